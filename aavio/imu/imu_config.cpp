@@ -1,0 +1,19 @@
+#include "aavio/imu/imu_config.hpp"
+
+#include <cmath>
+
+namespace aavio::imu {
+
+Status ImuConfig::Validate() const {
+  FieldChecker check;
+  for (double b : gyro_bias_rad_s) {
+    check.Require(std::abs(b) < 1.0, "gyro_bias_rad_s",
+                  "has a component of " + FieldChecker::Num(b) +
+                      " rad/s; a gyroscope bias is a few mrad/s (is it in deg/s?)");
+  }
+  check.InRange("static_init_s", static_init_s, 0.01, 600.0)
+      .InRange("online_window", online_window, 2, 100000);
+  return check.status();
+}
+
+}  // namespace aavio::imu

@@ -1,0 +1,45 @@
+#pragma once
+/// Configuration of the gyroscope prior (algorithm.md §5.6). The IMU–camera extrinsic is part
+/// of the calibration (StereoRig::T_imu_left), not of this config.
+
+#include <array>
+#include <utility>
+
+#include "aavio/common/config_fields.hpp"
+
+namespace aavio::imu {
+
+enum class GyroBiasMode {
+  kFixed,       ///< gyro_bias_rad_s as configured [paper: "initialised empirically, not updated"]
+  kStaticInit,  ///< mean gyro reading over an initial static interval
+  kOnline,      ///< re-estimated from tracked vs pre-integrated rotations (as ESVO2 does)
+};
+
+struct ImuConfig {
+  bool use_gyro_prior = true;  ///< initial rotation of registration from the gyroscope [paper]
+  GyroBiasMode bias_mode = GyroBiasMode::kFixed;
+  std::array<double, 3> gyro_bias_rad_s{0.0, 0.0, 0.0};  ///< in the IMU frame ([ICRA] zero)
+  double static_init_s = 1.0;  ///< length of the static interval for static_init [s]
+  int online_window = 20;      ///< tracked rotations in the online estimate's window
+
+  template <typename V>
+  void VisitFields(V&& v) {
+    v("use_gyro_prior", use_gyro_prior);
+    v("bias_mode", bias_mode);
+    v("gyro_bias_rad_s", gyro_bias_rad_s);
+    v("static_init_s", static_init_s);
+    v("online_window", online_window);
+  }
+  Status Validate() const;
+};
+
+}  // namespace aavio::imu
+
+namespace aavio {
+template <>
+struct EnumNames<imu::GyroBiasMode> {
+  static constexpr std::array kNames = {std::pair{imu::GyroBiasMode::kFixed, "fixed"},
+                                        std::pair{imu::GyroBiasMode::kStaticInit, "static_init"},
+                                        std::pair{imu::GyroBiasMode::kOnline, "online"}};
+};
+}  // namespace aavio

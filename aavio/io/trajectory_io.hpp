@@ -1,0 +1,27 @@
+#pragma once
+/// TUM trajectory files (formats.md §5.1): `timestamp tx ty tz qx qy qz qw` per line, seconds,
+/// T_world_body, Hamilton quaternion with w last. The name rpg_trajectory_evaluation expects for
+/// estimates is stamped_traj_estimate.txt.
+
+#include <string>
+#include <vector>
+
+#include "aavio/common/status.hpp"
+#include "aavio/geometry/pose_buffer.hpp"
+
+namespace aavio::io {
+
+/// Reads a TUM file: columns separated by whitespace or commas, `#` comment lines and blank lines
+/// skipped, timestamps parsed exactly to nanoseconds, quaternions normalised (their norm must be
+/// within 1 % of 1). Stamps must increase strictly. Errors give "file:line: what; fix".
+Expected<std::vector<geometry::StampedPose>> ReadTumTrajectory(const std::string& path);
+/// The same, from text; `origin` names it in messages.
+Expected<std::vector<geometry::StampedPose>> ParseTumTrajectory(const std::string& text,
+                                                                const std::string& origin);
+
+/// Writes (truncating) with a `# timestamp tx ty tz qx qy qz qw` header, 9-decimal seconds and
+/// 9-decimal pose values, single spaces.
+Status WriteTumTrajectory(const std::string& path, const std::vector<geometry::StampedPose>& poses);
+std::string FormatTumTrajectory(const std::vector<geometry::StampedPose>& poses);
+
+}  // namespace aavio::io

@@ -1,0 +1,114 @@
+#include "aavio/mapping/mapping_config.hpp"
+
+namespace aavio::mapping {
+
+namespace {
+
+bool IsOdd(int n) {
+  return n % 2 == 1;
+}
+
+}  // namespace
+
+Status StaticStereoConfig::Validate() const {
+  FieldChecker check;
+  check
+      .Require(patch_width >= 3 && patch_width <= 101 && IsOdd(patch_width), "patch_width",
+               "must be odd, from 3 to 101")
+      .Require(patch_height >= 1 && patch_height <= 101 && IsOdd(patch_height), "patch_height",
+               "must be odd, from 1 to 101")
+      .InRange("min_disparity", min_disparity, 0, 10000)
+      .InRange("max_disparity", max_disparity, 1, 10000)
+      .Require(min_disparity < max_disparity, "min_disparity",
+               "must be below max_disparity (" + FieldChecker::Num(max_disparity) + ")")
+      .InRange("step", step, 1, 32)
+      .Require(zncc_threshold > 0.0 && zncc_threshold <= 1.0, "zncc_threshold",
+               "= " + FieldChecker::Num(zncc_threshold) + " must be in (0, 1] (cost ½(1 − ZNCC))")
+      .InRange("empty_patch_fraction", empty_patch_fraction, 0.0, 1.0);
+  return check.status();
+}
+
+Status TemporalStereoConfig::Validate() const {
+  FieldChecker check;
+  check
+      .Require(patch_rows >= 1 && patch_rows <= 101 && IsOdd(patch_rows), "patch_rows",
+               "must be odd, from 1 to 101")
+      .Require(patch_cols >= 3 && patch_cols <= 201 && IsOdd(patch_cols), "patch_cols",
+               "must be odd, from 3 to 201")
+      .Positive("min_translation_m", min_translation_m)
+      .Positive("threshold_factor", threshold_factor)
+      .Positive("min_depth_m", min_depth_m)
+      .Require(max_depth_m > min_depth_m, "max_depth_m",
+               "= " + FieldChecker::Num(max_depth_m) + " must exceed min_depth_m (" +
+                   FieldChecker::Num(min_depth_m) + ")")
+      .InRange("history_length", history_length, 2, 10000);
+  return check.status();
+}
+
+Status DepthRefinementConfig::Validate() const {
+  FieldChecker check;
+  check.InRange("max_iterations", max_iterations, 0, 1000)
+      .Require(patch_width >= 1 && IsOdd(patch_width), "patch_width", "must be odd and positive")
+      .Require(patch_height >= 1 && IsOdd(patch_height), "patch_height", "must be odd and positive")
+      .Require(
+          student_t_nu > 2.0 && student_t_nu < 1000.0, "student_t_nu",
+          "= " + FieldChecker::Num(student_t_nu) + " must be in (2, 1000): ν ≤ 2 has no variance")
+      .Positive("student_t_scale", student_t_scale)
+      .Positive("residual_threshold", residual_threshold)
+      .Positive("max_inv_depth_stddev", max_inv_depth_stddev);
+  return check.status();
+}
+
+Status FusionConfig::Validate() const {
+  FieldChecker check;
+  check.InRange("max_frames", max_frames, 1, 1000)
+      .InRange("max_points", max_points, 1, 10000000)
+      .InRange("radius", radius, 0, 10)
+      .InRange("min_age", min_age, 0, 1000)
+      .Positive("compatibility_sigmas", compatibility_sigmas);
+  return check.status();
+}
+
+Status RegularizationConfig::Validate() const {
+  FieldChecker check;
+  check.InRange("radius", radius, 1, 100)
+      .NonNegative("min_neighbours", min_neighbours)
+      .NonNegative("min_close_neighbours", min_close_neighbours)
+      .Require(min_close_neighbours <= min_neighbours, "min_close_neighbours",
+               "must not exceed min_neighbours (" + FieldChecker::Num(min_neighbours) + ")");
+  return check.status();
+}
+
+Status BootstrapConfig::Validate() const {
+  FieldChecker check;
+  check.InRange("min_points", min_points, 1, 10000000)
+      .Require(block_size >= 1 && block_size <= 31 && IsOdd(block_size), "block_size",
+               "must be odd, from 1 to 31 (OpenCV StereoSGBM)")
+      .InRange("uniqueness_ratio", uniqueness_ratio, 0, 100)
+      .Positive("inv_depth_stddev", inv_depth_stddev);
+  return check.status();
+}
+
+Status MappingConfig::Validate() const {
+  FieldChecker check;
+  check.InRange("rate_hz", rate_hz, 0.1, 1000.0)
+      .Positive("inv_depth_min", inv_depth_min)
+      .Require(inv_depth_max > inv_depth_min, "inv_depth_max",
+               "= " + FieldChecker::Num(inv_depth_max) + " must exceed inv_depth_min (" +
+                   FieldChecker::Num(inv_depth_min) + "); the depth range is [1/inv_depth_max, " +
+                   "1/inv_depth_min] m")
+      .InRange("max_points", max_points, 1, 1000000)
+      .InRange("min_points", min_points, 0, 1000000)
+      .Require(min_points <= max_points, "min_points",
+               "must not exceed max_points (" + FieldChecker::Num(max_points) + ")")
+      .NonNegative("eta", eta)
+      .Nested("static_stereo", static_stereo)
+      .Nested("temporal_stereo", temporal_stereo)
+      .Nested("depth_refinement", depth_refinement)
+      .Nested("fusion", fusion)
+      .Nested("regularization", regularization)
+      .Nested("bootstrap", bootstrap);
+  return check.status();
+}
+
+}  // namespace aavio::mapping

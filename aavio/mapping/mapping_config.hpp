@@ -1,0 +1,186 @@
+#pragma once
+/// Configuration of mapping (algorithm.md §4, §10.2). Defaults are the paper's / ICRA code's
+/// DSEC values; configs/rpg.yaml and configs/dsec.yaml are the per-dataset presets.
+
+#include <array>
+#include <utility>
+
+#include "aavio/common/config_fields.hpp"
+
+namespace aavio::mapping {
+
+/// Left/right block matching along rectified rows (algorithm.md §4.3).
+struct StaticStereoConfig {
+  int patch_width = 15;                ///< patch columns (all reference configs)
+  int patch_height = 7;                ///< patch rows
+  int min_disparity = 0;               ///< [px], further bounded by the depth range
+  int max_disparity = 150;             ///< [px], further bounded by the depth range
+  int step = 1;                        ///< coarse search step [px] ([ICRA]; ESVO2 DSEC 3)
+  double zncc_threshold = 0.1;         ///< θ: accept cost ½(1 − ZNCC) below it ([ICRA], [ESVO])
+  bool smooth_time_surface = true;     ///< Gaussian 5×5 on the TS before matching (DSEC configs)
+  double empty_patch_fraction = 0.95;  ///< reject patches with more than this share of TS < 1
+
+  template <typename V>
+  void VisitFields(V&& v) {
+    v("patch_width", patch_width);
+    v("patch_height", patch_height);
+    v("min_disparity", min_disparity);
+    v("max_disparity", max_disparity);
+    v("step", step);
+    v("zncc_threshold", zncc_threshold);
+    v("smooth_time_surface", smooth_time_surface);
+    v("empty_patch_fraction", empty_patch_fraction);
+  }
+  Status Validate() const;
+};
+
+/// AA-now vs AA-past matching for edges parallel to the baseline (algorithm.md §4.4).
+struct TemporalStereoConfig {
+  bool enabled = true;
+  int patch_rows = 5;  ///< wide flat patch ([ICRA] 5×31 hard-coded)
+  int patch_cols = 31;
+  double min_translation_m = 0.3;  ///< partner at least this far away ([ICRA] 0.3 hard-coded)
+  double threshold_factor = 3.0;   ///< accept cost < factor × static zncc_threshold ([ICRA] 3θ)
+  double min_depth_m = 0.8;        ///< triangulated depth gate ([ICRA] 0.8–40 m hard-coded)
+  double max_depth_m = 40.0;
+  int history_length = 100;  ///< observations kept for the partner search (≈1 s at 100 Hz)
+
+  template <typename V>
+  void VisitFields(V&& v) {
+    v("enabled", enabled);
+    v("patch_rows", patch_rows);
+    v("patch_cols", patch_cols);
+    v("min_translation_m", min_translation_m);
+    v("threshold_factor", threshold_factor);
+    v("min_depth_m", min_depth_m);
+    v("max_depth_m", max_depth_m);
+    v("history_length", history_length);
+  }
+  Status Validate() const;
+};
+
+/// Per-point Student-t refinement and culling (algorithm.md §4.5, §4.7).
+struct DepthRefinementConfig {
+  int max_iterations = 10;  ///< LM steps; 0 = ESVO2's variance-only evaluation ([ICRA] 10)
+  int patch_width = 15;     ///< residual patch ([ICRA], [ESVO] 15×7; ESVO2 9×5)
+  int patch_height = 7;
+  double student_t_nu = 2.182;        ///< ν of the TS residual ([ESVO2], DSEC all versions)
+  double student_t_scale = 17.277;    ///< s of the TS residual [TS levels]
+  double residual_threshold = 30.0;   ///< cull if cost > threshold² × patch area [TS levels]
+  double max_inv_depth_stddev = 1.0;  ///< cull if σ_ρ above it [1/m] (DSEC 1 = effectively off)
+
+  template <typename V>
+  void VisitFields(V&& v) {
+    v("max_iterations", max_iterations);
+    v("patch_width", patch_width);
+    v("patch_height", patch_height);
+    v("student_t_nu", student_t_nu);
+    v("student_t_scale", student_t_scale);
+    v("residual_threshold", residual_threshold);
+    v("max_inv_depth_stddev", max_inv_depth_stddev);
+  }
+  Status Validate() const;
+};
+
+enum class FusionStrategy {
+  kConstFrames,  ///< keep the newest max_frames batches
+  kConstPoints,  ///< drop the oldest batches while points > 1.5 × max_points
+};
+
+/// Student-t fusion into the depth grid of the current pose (algorithm.md §4.8–4.9).
+struct FusionConfig {
+  FusionStrategy strategy = FusionStrategy::kConstFrames;
+  int max_frames = 5;                 ///< FIFO length in batches ([ESVO] DSEC 5)
+  int max_points = 20000;             ///< FIFO size for const_points
+  int radius = 1;                     ///< 0: 2×2 cells, ≥ 1: 3×3 cells
+  int min_age = 1;                    ///< fusions a point needs to survive cleaning
+  double compatibility_sigmas = 2.0;  ///< |Δρ| < k σ counts as the same surface
+
+  template <typename V>
+  void VisitFields(V&& v) {
+    v("strategy", strategy);
+    v("max_frames", max_frames);
+    v("max_points", max_points);
+    v("radius", radius);
+    v("min_age", min_age);
+    v("compatibility_sigmas", compatibility_sigmas);
+  }
+  Status Validate() const;
+};
+
+/// Optional neighbourhood regularisation of the depth grid (algorithm.md §4.10).
+struct RegularizationConfig {
+  bool enabled = false;  ///< [ICRA] DSEC off
+  int radius = 20;
+  int min_neighbours = 32;
+  int min_close_neighbours = 32;
+
+  template <typename V>
+  void VisitFields(V&& v) {
+    v("enabled", enabled);
+    v("radius", radius);
+    v("min_neighbours", min_neighbours);
+    v("min_close_neighbours", min_close_neighbours);
+  }
+  Status Validate() const;
+};
+
+/// SGM bootstrap of the first map (algorithm.md §4.12).
+struct BootstrapConfig {
+  int min_points = 500;  ///< accept the initial map with at least this many points ([ESVO], [ICRA])
+  int block_size = 11;   ///< StereoSGBM block; P1 = 8·b², P2 = 32·b²
+  int uniqueness_ratio = 11;
+  double inv_depth_stddev = 0.001;  ///< initial σ_ρ of SGM points [1/m]
+
+  template <typename V>
+  void VisitFields(V&& v) {
+    v("min_points", min_points);
+    v("block_size", block_size);
+    v("uniqueness_ratio", uniqueness_ratio);
+    v("inv_depth_stddev", inv_depth_stddev);
+  }
+  Status Validate() const;
+};
+
+struct MappingConfig {
+  double rate_hz = 20.0;         ///< mapping cycles per second of data time ([ICRA], [ESVO])
+  double inv_depth_min = 0.001;  ///< 1/m: farthest depth 1000 m (DSEC configs)
+  double inv_depth_max = 0.25;   ///< 1/m: nearest depth 4 m (DSEC configs)
+  int max_points = 2500;         ///< edge pixels per cycle ([ICRA] DSEC PROCESS_EVENT_NUM)
+  int min_points = 100;          ///< skip a cycle with fewer edge pixels
+  double eta = 0.2;              ///< |g_u|/|g_v| below it → temporal stereo [paper]
+  StaticStereoConfig static_stereo;
+  TemporalStereoConfig temporal_stereo;
+  DepthRefinementConfig depth_refinement;
+  FusionConfig fusion;
+  RegularizationConfig regularization;
+  BootstrapConfig bootstrap;
+
+  template <typename V>
+  void VisitFields(V&& v) {
+    v("rate_hz", rate_hz);
+    v("inv_depth_min", inv_depth_min);
+    v("inv_depth_max", inv_depth_max);
+    v("max_points", max_points);
+    v("min_points", min_points);
+    v("eta", eta);
+    v("static_stereo", static_stereo);
+    v("temporal_stereo", temporal_stereo);
+    v("depth_refinement", depth_refinement);
+    v("fusion", fusion);
+    v("regularization", regularization);
+    v("bootstrap", bootstrap);
+  }
+  Status Validate() const;
+};
+
+}  // namespace aavio::mapping
+
+namespace aavio {
+template <>
+struct EnumNames<mapping::FusionStrategy> {
+  static constexpr std::array kNames = {
+      std::pair{mapping::FusionStrategy::kConstFrames, "const_frames"},
+      std::pair{mapping::FusionStrategy::kConstPoints, "const_points"}};
+};
+}  // namespace aavio

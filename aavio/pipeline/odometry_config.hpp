@@ -1,0 +1,52 @@
+#pragma once
+/// The whole system's configuration: one section per module, composed (style.md §4). YAML
+/// sections mirror these names; `aavio config --list` prints every key with its value.
+
+#include <cstdint>
+
+#include "aavio/common/config_fields.hpp"
+#include "aavio/events/events_config.hpp"
+#include "aavio/imu/imu_config.hpp"
+#include "aavio/mapping/mapping_config.hpp"
+#include "aavio/tracking/tracking_config.hpp"
+
+namespace aavio::pipeline {
+
+struct PipelineConfig {
+  std::int64_t random_seed = 1;  ///< seeds every random choice; same seed, same trajectory
+  int num_threads = 0;           ///< worker threads, 0 = all cores; results do not depend on it
+  int max_buffered_events = 5'000'000;  ///< per camera, oldest dropped beyond ([ESVO] 5e6)
+
+  template <typename V>
+  void VisitFields(V&& v) {
+    v("random_seed", random_seed);
+    v("num_threads", num_threads);
+    v("max_buffered_events", max_buffered_events);
+  }
+  Status Validate() const;
+};
+
+struct OdometryConfig {
+  PipelineConfig pipeline;
+  events::TimeSurfaceConfig time_surface;
+  events::AdaptiveAccumulationConfig adaptive_accumulation;
+  events::EdgeSamplingConfig edge_sampling;
+  mapping::MappingConfig mapping;
+  tracking::TrackingConfig tracking;
+  imu::ImuConfig imu;
+
+  template <typename V>
+  void VisitFields(V&& v) {
+    v("pipeline", pipeline);
+    v("time_surface", time_surface);
+    v("adaptive_accumulation", adaptive_accumulation);
+    v("edge_sampling", edge_sampling);
+    v("mapping", mapping);
+    v("tracking", tracking);
+    v("imu", imu);
+  }
+  /// Every section, then the relations between sections.
+  Status Validate() const;
+};
+
+}  // namespace aavio::pipeline

@@ -1,0 +1,18 @@
+#include "aavio/tracking/tracking_config.hpp"
+
+namespace aavio::tracking {
+
+Status TrackingConfig::Validate() const {
+  FieldChecker check;
+  check.InRange("max_points", max_points, 1, 1000000)
+      .InRange("batch_size", batch_size, 1, 1000000)
+      .Require(batch_size <= max_points, "batch_size",
+               "must not exceed max_points (" + FieldChecker::Num(max_points) + ")")
+      .InRange("max_iterations", max_iterations, 1, 1000)
+      .Positive("huber_threshold", huber_threshold)
+      .Positive("function_tolerance", function_tolerance)
+      .Positive("step_tolerance", step_tolerance);
+  return check.status();
+}
+
+}  // namespace aavio::tracking

@@ -1,0 +1,29 @@
+#pragma once
+/// Configuration of tracking: registration of the local map on the negative time surface
+/// (algorithm.md §5, §10.3).
+
+#include "aavio/common/config_fields.hpp"
+
+namespace aavio::tracking {
+
+struct TrackingConfig {
+  int max_points = 2000;             ///< map points sampled per registration problem [paper ~2k]
+  int batch_size = 300;              ///< points per LM step; also the smallest usable map
+  int max_iterations = 10;           ///< LM steps per tick ([ICRA], [ESVO]; ESVO2 rpg 20)
+  double huber_threshold = 50.0;     ///< robust loss threshold [TS levels]
+  double function_tolerance = 1e-3;  ///< stop on relative cost reduction below it
+  double step_tolerance = 1e-3;      ///< stop on relative step below it
+
+  template <typename V>
+  void VisitFields(V&& v) {
+    v("max_points", max_points);
+    v("batch_size", batch_size);
+    v("max_iterations", max_iterations);
+    v("huber_threshold", huber_threshold);
+    v("function_tolerance", function_tolerance);
+    v("step_tolerance", step_tolerance);
+  }
+  Status Validate() const;
+};
+
+}  // namespace aavio::tracking

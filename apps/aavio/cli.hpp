@@ -1,0 +1,41 @@
+#pragma once
+/// The `aavio` command line: one file per subcommand (design.md §4). RunCli is the whole program
+/// minus process setup, so tests run commands in-process and read what they print.
+
+#include <functional>
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+namespace CLI {
+class App;
+}
+
+namespace aavio::cli {
+
+/// Exit codes of every subcommand.
+enum ExitCode : int {
+  kExitOk = 0,
+  kExitError = 1,           ///< bad input or a failed operation; the message says which
+  kExitUsage = 2,           ///< wrong arguments
+  kExitNotImplemented = 3,  ///< a subcommand that is not built yet
+};
+
+/// What a subcommand's callback needs: where to print, and where to put the action to run once
+/// the command line has parsed.
+struct Context {
+  std::ostream& out;
+  std::ostream& err;
+  std::function<int()> action;
+};
+
+void RegisterInfo(CLI::App& app, Context& ctx);
+void RegisterConfig(CLI::App& app, Context& ctx);
+void RegisterPlanned(CLI::App& app, Context& ctx);  // subcommands not built yet
+
+/// Runs `aavio` with the given arguments (argv[0] included) and returns the exit code.
+int RunCli(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
+
+std::string VersionString();
+
+}  // namespace aavio::cli

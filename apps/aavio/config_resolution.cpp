@@ -1,0 +1,54 @@
+#include "config_resolution.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include "aavio/io/config_yaml.hpp"
+#include "aavio/io/presets.hpp"
+
+namespace aavio::cli {
+
+void AddConfigOptions(CLI::App& sub, ConfigSources* sources) {
+  std::string names;
+  for (const std::string& n : io::PresetNames())
+    names += (names.empty() ? "" : ", ") + n;
+  sub.add_option("--preset", sources->preset, "Parameter preset: " + names);
+  sub.add_option("--config", sources->files, "YAML file(s) of parameters, applied in order")
+      ->type_name("FILE");
+  sub.add_option("--set", sources->overrides, "Override one parameter, e.g. --set mapping.eta=0.1")
+      ->type_name("KEY=VALUE");
+}
+
+Expected<pipeline::OdometryConfig> ResolveOdometryConfig(const ConfigSources& sources) {
+  pipeline::OdometryConfig config;
+  if (!sources.preset.empty()) {
+    Expected<std::vector<ConfigEntry>> entries = io::PresetEntries(sources.preset);
+    if (!entries) return entries.status();
+    AAVIO_RETURN_IF_ERROR(ApplyConfigEntries(*entries, &config));
+  }
+  for (const std::string& file : sources.files) {
+    Expected<std::vector<ConfigEntry>> entries = io::ReadConfigYaml(file);
+    if (!entries) return entries.status();
+    AAVIO_RETURN_IF_ERROR(ApplyConfigEntries(*entries, &config));
+  }
+  std::vector<ConfigEntry> overrides;
+  for (const std::string& text : sources.overrides) {
+    Expected<ConfigEntry> entry = ParseKeyValueOverride(text);
+    if (!entry) return entry.status();
+    overrides.push_back(*entry);
+  }
+  AAVIO_RETURN_IF_ERROR(ApplyConfigEntries(overrides, &config));
+  Status status = config.Validate();
+  if (!status.ok()) return InvalidArgument("invalid configuration: " + status.message());
+  return config;
+}
+
+std::string DescribeSources(const ConfigSources& sources) {
+  std::string text = sources.preset.empty() ? "defaults" : "preset " + sources.preset;
+  for (const std::string& file : sources.files)
+    text += " + " + file;
+  for (const std::string& o : sources.overrides)
+    text += " + --set " + o;
+  return text;
+}
+
+}  // namespace aavio::cli

@@ -1,0 +1,38 @@
+// Subcommands of the CLI contract (design.md §4) that are registered but not built yet: they say
+// so, with the issue that builds them, and exit with kExitNotImplemented.
+#include <CLI/CLI.hpp>
+#include <ostream>
+
+#include "cli.hpp"
+
+namespace aavio::cli {
+
+void RegisterPlanned(CLI::App& app, Context& ctx) {
+  struct Planned {
+    const char* name;
+    const char* description;
+    const char* issue;
+  };
+  static const Planned kPlanned[] = {
+      {"simulate", "Simulate a stereo event camera + IMU sequence with ground truth", "#4"},
+      {"run", "Run the odometry on a sequence", "#8"},
+      {"eval", "Evaluate a trajectory (ATE, RPE) or a run against ground truth", "#9"},
+      {"demo", "Simulate a short sequence, run, evaluate and print the result", "#8"},
+      {"report", "Plots and a self-contained report.html of one or more runs", "#9"},
+  };
+  for (const Planned& planned : kPlanned) {
+    CLI::App* sub =
+        app.add_subcommand(planned.name, std::string(planned.description) +
+                                             " (not built yet: issue " + planned.issue + ")");
+    sub->allow_extras();
+    sub->callback([&ctx, planned] {
+      ctx.action = [&ctx, planned] {
+        ctx.err << "aavio " << planned.name << ": not built yet (planned in issue " << planned.issue
+                << "); see `aavio --help` for what works today\n";
+        return kExitNotImplemented;
+      };
+    });
+  }
+}
+
+}  // namespace aavio::cli
