@@ -1,0 +1,158 @@
+#include "aavio/geometry/camera_model.hpp"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+namespace aavio::geometry {
+namespace {
+
+// Real calibrations: rpg DAVIS240C (strong radtan), DSEC (mild radtan, 4 coefficients),
+// a 5-coefficient radtan, and MVSEC / TUM-VIE equidistant cameras.
+std::vector<CameraIntrinsics> Cameras() {
+  return {
+      {240,
+       180,
+       196.639,
+       196.733,
+       105.064,
+       72.4717,
+       DistortionModel::kRadtan,
+       {-0.336733, 0.111789, -0.00140053, -0.000459594}},
+      {640,
+       480,
+       553.469,
+       553.399,
+       346.653,
+       216.521,
+       DistortionModel::kRadtan,
+       {-0.0935648, 0.194458, 7.64243e-05, 0.00195639}},
+      {640,
+       480,
+       327.32749,
+       327.46184,
+       304.97749,
+       235.37621,
+       DistortionModel::kRadtan,
+       {-0.031982, 0.041966, -0.000507, -0.001031, 0.0012}},
+      {346,
+       260,
+       226.38018519795807,
+       226.15002947047415,
+       173.6470807871759,
+       133.73271487507847,
+       DistortionModel::kEquidistant,
+       {-0.048031442223833355, 0.011330957517194437, -0.055378166304281135, 0.021500973881459395}},
+      {1280,
+       720,
+       1049.583,
+       1049.423,
+       634.7184,
+       263.4698,
+       DistortionModel::kEquidistant,
+       {-0.1151966, -0.06222183, 0.2168261, -0.2352862}},
+  };
+}
+
+class CameraModelTest : public ::testing::TestWithParam<int> {
+ protected:
+  CameraModel camera() const { return *CameraModel::Create(Cameras()[GetParam()]); }
+};
+
+TEST_P(CameraModelTest, DistortionJacobianMatchesFiniteDifferences) {
+  const CameraModel cam = camera();
+  std::mt19937 rng(1);
+  std::uniform_real_distribution<double> u(-0.6, 0.6);
+  for (int i = 0; i < 200; ++i) {
+    const Eigen::Vector2d x(u(rng), u(rng));
+    Eigen::Matrix2d J;
+    cam.Distort(x, &J);
+    Eigen::Matrix2d numeric;
+    const double h = 1e-7;
+    for (int k = 0; k < 2; ++k) {
+      const Eigen::Vector2d d = Eigen::Vector2d::Unit(k) * h;
+      numeric.col(k) = (cam.Distort(x + d) - cam.Distort(x - d)) / (2 * h);
+    }
+    EXPECT_LT((J - numeric).cwiseAbs().maxCoeff(), 1e-7) << x.transpose();
+  }
+}
+
+TEST_P(CameraModelTest, ProjectionJacobianMatchesFiniteDifferences) {
+  const CameraModel cam = camera();
+  const Eigen::Vector3d p(0.4, -0.25, 1.7);
+  Eigen::Vector2d pixel;
+  Eigen::Matrix<double, 2, 3> J;
+  ASSERT_TRUE(cam.Project(p, &pixel, &J));
+  for (int k = 0; k < 3; ++k) {
+    const Eigen::Vector3d d = Eigen::Vector3d::Unit(k) * 1e-6;
+    Eigen::Vector2d plus, minus;
+    ASSERT_TRUE(cam.Project(p + d, &plus));
+    ASSERT_TRUE(cam.Project(p - d, &minus));
+    EXPECT_LT(((plus - minus) / 2e-6 - J.col(k)).norm(), 1e-4);
+  }
+}
+
+TEST_P(CameraModelTest, UnprojectInvertsProjectOverTheWholeImage) {
+  const CameraModel cam = camera();
+  double worst_px = 0.0;
+  for (int v = 0; v < cam.height(); v += 7) {
+    for (int u = 0; u < cam.width(); u += 7) {
+      Eigen::Vector3d ray;
+      ASSERT_TRUE(cam.Unproject(Eigen::Vector2d(u, v), &ray)) << u << "," << v;
+      EXPECT_DOUBLE_EQ(ray.z(), 1.0);
+      Eigen::Vector2d back;
+      ASSERT_TRUE(cam.Project(ray * 3.0, &back));
+      worst_px = std::max(worst_px, (back - Eigen::Vector2d(u, v)).norm());
+    }
+  }
+  EXPECT_LT(worst_px, 1e-6);
+}
+
+INSTANTIATE_TEST_SUITE_P(RealCalibrations, CameraModelTest, ::testing::Range(0, 5));
+
+TEST(CameraModel, PointsBehindTheCameraDoNotProject) {
+  const CameraModel cam = *CameraModel::Create(Cameras()[0]);
+  Eigen::Vector2d pixel;
+  EXPECT_FALSE(cam.Project(Eigen::Vector3d(0, 0, -1), &pixel));
+  EXPECT_FALSE(cam.Project(Eigen::Vector3d(1, 0, 0), &pixel));
+}
+
+TEST(CameraModel, UndistortReportsNonConvergence) {
+  // r (1 − 0.5 r²) peaks at 0.544 for r = 0.816: a distorted radius beyond that has no preimage.
+  const CameraModel cam = *CameraModel::Create(
+      {100, 100, 50, 50, 50, 50, DistortionModel::kRadtan, {-0.5, 0.0, 0.0, 0.0}});
+  Eigen::Vector2d xn;
+  EXPECT_FALSE(cam.Undistort(Eigen::Vector2d(0.7, 0.0), &xn));
+  EXPECT_TRUE(cam.Undistort(Eigen::Vector2d(0.4, 0.0), &xn));
+}
+
+TEST(CameraModel, CreateRejectsBadIntrinsics) {
+  auto with = [](auto change) {
+    CameraIntrinsics in = Cameras()[1];
+    change(in);
+    return CameraModel::Create(in).status();
+  };
+  EXPECT_NE(with([](CameraIntrinsics& in) { in.fx = -1; }).message().find("focal lengths"),
+            std::string::npos);
+  EXPECT_NE(with([](CameraIntrinsics& in) { in.width = 0; }).message().find("not a sensor size"),
+            std::string::npos);
+  EXPECT_NE(with([](CameraIntrinsics& in) { in.cx = 5000; }).message().find("principal point"),
+            std::string::npos);
+  EXPECT_NE(with([](CameraIntrinsics& in) {
+              in.coeffs = {0.1, 0.2, 0.3};
+            })
+                .message()
+                .find("4 or 5 coefficients"),
+            std::string::npos);
+  EXPECT_NE(with([](CameraIntrinsics& in) {
+              in.model = DistortionModel::kEquidistant;
+              in.coeffs = {0.1, 0.2, 0.3, 0.4, 0.5};
+            })
+                .message()
+                .find("equidistant takes 4"),
+            std::string::npos);
+  EXPECT_TRUE(with([](CameraIntrinsics&) {}).ok());
+}
+
+}  // namespace
+}  // namespace aavio::geometry

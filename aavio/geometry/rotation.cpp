@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "aavio/common/format.hpp"
+
 namespace aavio::geometry {
 
 Eigen::Matrix3d Hat(const Eigen::Vector3d& w) {
@@ -80,6 +82,21 @@ RotationError MeasureRotationError(const Eigen::Matrix3d& R) {
   error.orthogonality = (R * R.transpose() - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
   error.determinant = R.determinant();
   return error;
+}
+
+Status ValidateRotation(const Eigen::Matrix3d& R, const std::string& name, double tolerance) {
+  if (!R.allFinite()) return InvalidArgument(name + " has non-finite entries");
+  const RotationError error = MeasureRotationError(R);
+  if (error.determinant < 0.0) {
+    return InvalidArgument(name + " is a reflection (det = " +
+                           StrFormat("%.6f", error.determinant) + "), not a rotation");
+  }
+  if (error.orthogonality > tolerance) {
+    return InvalidArgument(
+        name + " is not a rotation: max |R R^T - I| = " + StrFormat("%.3g", error.orthogonality) +
+        " (tolerance " + StrFormat("%.0e", tolerance) + ")");
+  }
+  return Status::Ok();
 }
 
 double RotationDistance(const Eigen::Matrix3d& R_a, const Eigen::Matrix3d& R_b) {

@@ -5,6 +5,9 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <string>
+
+#include "aavio/common/status.hpp"
 
 namespace aavio::geometry {
 
@@ -36,6 +39,10 @@ struct RotationError {
   double determinant = 0.0;
 };
 RotationError MeasureRotationError(const Eigen::Matrix3d& R);
+
+/// Ok if R is a rotation to within `tolerance` (max |R Rᵀ − I|; 1e-3 accepts the 6 digits that
+/// calibration files print) with det > 0; otherwise InvalidArgument naming `name`.
+Status ValidateRotation(const Eigen::Matrix3d& R, const std::string& name, double tolerance = 1e-3);
 
 /// Angle of the rotation R_a * R_b⁻¹ [rad]: the distance between two rotations.
 double RotationDistance(const Eigen::Matrix3d& R_a, const Eigen::Matrix3d& R_b);

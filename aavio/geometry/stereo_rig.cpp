@@ -10,23 +10,6 @@ namespace aavio::geometry {
 
 namespace {
 
-constexpr double kRotationTolerance = 1e-3;
-
-Status CheckRotation(const Eigen::Matrix3d& R, const std::string& name) {
-  if (!R.allFinite()) return InvalidArgument(name + " has non-finite entries");
-  const RotationError error = MeasureRotationError(R);
-  if (error.determinant < 0.0) {
-    return InvalidArgument(name + " is a reflection (det = " +
-                           StrFormat("%.6f", error.determinant) + "), not a rotation");
-  }
-  if (error.orthogonality > kRotationTolerance) {
-    return InvalidArgument(
-        name + " is not a rotation: max |R Rᵀ − I| = " + StrFormat("%.3g", error.orthogonality) +
-        " (tolerance " + StrFormat("%.0e", kRotationTolerance) + ")");
-  }
-  return Status::Ok();
-}
-
 Status CheckProjection(const ProjectionMatrix& P, const std::string& name) {
   if (!P.allFinite()) return InvalidArgument(name + " has non-finite entries");
   if (!(P(0, 0) > 0.0) || !(P(1, 1) > 0.0)) {
@@ -51,10 +34,10 @@ Expected<StereoRig> StereoRig::Create(StereoRigParams p, std::vector<std::string
                            std::to_string(p.right.width()) + "x" +
                            std::to_string(p.right.height()) + "); aavio needs equal sizes");
   }
-  AAVIO_RETURN_IF_ERROR(CheckRotation(p.R_rect_left_left, "left rectification rotation"));
-  AAVIO_RETURN_IF_ERROR(CheckRotation(p.R_rect_right_right, "right rectification rotation"));
-  AAVIO_RETURN_IF_ERROR(CheckRotation(p.T_right_left.R, "T_right_left rotation"));
-  if (p.T_imu_left) AAVIO_RETURN_IF_ERROR(CheckRotation(p.T_imu_left->R, "IMU-camera rotation"));
+  AAVIO_RETURN_IF_ERROR(ValidateRotation(p.R_rect_left_left, "left rectification rotation"));
+  AAVIO_RETURN_IF_ERROR(ValidateRotation(p.R_rect_right_right, "right rectification rotation"));
+  AAVIO_RETURN_IF_ERROR(ValidateRotation(p.T_right_left.R, "T_right_left rotation"));
+  if (p.T_imu_left) AAVIO_RETURN_IF_ERROR(ValidateRotation(p.T_imu_left->R, "IMU-camera rotation"));
   AAVIO_RETURN_IF_ERROR(CheckProjection(p.P_left, "left projection matrix"));
   AAVIO_RETURN_IF_ERROR(CheckProjection(p.P_right, "right projection matrix"));
   if (p.P_left(0, 3) != 0.0 || p.P_left(1, 3) != 0.0) {

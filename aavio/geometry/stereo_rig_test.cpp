@@ -1,0 +1,110 @@
+#include "aavio/geometry/stereo_rig.hpp"
+
+#include <gtest/gtest.h>
+
+namespace aavio::geometry {
+namespace {
+
+// The rpg DAVIS240C pair (ESVO calibration).
+StereoRigParams RpgParams() {
+  CameraIntrinsics left{240,
+                        180,
+                        196.639,
+                        196.733,
+                        105.064,
+                        72.4717,
+                        DistortionModel::kRadtan,
+                        {-0.336733, 0.111789, -0.00140053, -0.000459594}};
+  CameraIntrinsics right{240,
+                         180,
+                         196.426,
+                         196.564,
+                         110.745,
+                         88.1131,
+                         DistortionModel::kRadtan,
+                         {-0.346294, 0.12772, -0.000272051, -0.000195801}};
+  StereoRigParams p{
+      *CameraModel::Create(left), *CameraModel::Create(right), {}, {}, {}, {}, {}, std::nullopt};
+  p.R_rect_left_left << 0.999791, -0.018779, -0.00802416, 0.0187767, 0.999824, -0.000360707,
+      0.00802952, 0.000209964, 0.999968;
+  p.R_rect_right_right << 0.999589, 0.0222217, -0.0181009, -0.0222166, 0.999753, 0.000486491,
+      0.0181073, -8.41512e-05, 0.999836;
+  p.P_left << 156.925, 0, 108.167, 0, 0, 156.925, 78.4205, 0, 0, 0, 1, 0;
+  p.P_right << 156.925, 0, 108.167, -23.2327, 0, 156.925, 78.4205, 0, 0, 0, 1, 0;
+  Eigen::Matrix<double, 3, 4> T;
+  T << 0.9991089760393723, -0.04098010198963204, 0.010093821797214667, -0.1479883582369969,
+      0.04098846609277917, 0.9991594254283246, -0.000623077121092687, -0.003289908601915284,
+      -0.010059803423311134, 0.0010362522169301642, 0.9999488619606629, 0.0026798262366239016;
+  p.T_right_left = RigidTransform::FromMatrix(T);
+  return p;
+}
+
+TEST(StereoRig, DerivesBaselineAndRectifiedGeometry) {
+  std::vector<std::string> warnings;
+  Expected<StereoRig> rig = StereoRig::Create(RpgParams(), &warnings);
+  ASSERT_TRUE(rig.ok()) << rig.status().message();
+  EXPECT_NEAR(rig->baseline_m(), 23.2327 / 156.925, 1e-12);  // algorithm.md §10.5: 0.1481 m
+  EXPECT_DOUBLE_EQ(rig->focal_px(), 156.925);
+  EXPECT_NEAR(rig->DisparityAtDepth(1.0), 23.2327, 1e-9);
+  EXPECT_TRUE(warnings.empty()) << warnings.front();
+  // Rectified right ← rectified left is the pure baseline translation.
+  const RigidTransform T = rig->T_rect_right_rect_left();
+  EXPECT_EQ(T.t, Eigen::Vector3d(-rig->baseline_m(), 0, 0));
+}
+
+TEST(StereoRig, ImuExtrinsicIsComposedWithTheRectification) {
+  StereoRigParams p = RpgParams();
+  p.T_imu_left =
+      RigidTransform(ExpSO3(Eigen::Vector3d(0.01, -0.02, 0.03)), Eigen::Vector3d(0.1, 0, 0));
+  const StereoRig rig = *StereoRig::Create(p);
+  EXPECT_FALSE(StereoRig::Create(RpgParams())->T_imu_rect_left().has_value());
+  // p_imu = T_imu_left · R_rectᵀ · p_rect for a point given in the rectified left frame.
+  const Eigen::Vector3d p_rect(0.3, -0.1, 2.0);
+  const Eigen::Vector3d expected =
+      *rig.T_imu_left() * (rig.R_rect_left_left().transpose() * p_rect);
+  EXPECT_LT((*rig.T_imu_rect_left() * p_rect - expected).norm(), 1e-14);
+}
+
+TEST(StereoRig, WarnsWhenTheExtrinsicDisagreesWithTheRectification) {
+  StereoRigParams p = RpgParams();
+  p.T_right_left.t *= 1.2;  // a 20 % longer baseline than P_right says
+  std::vector<std::string> warnings;
+  ASSERT_TRUE(StereoRig::Create(p, &warnings).ok());
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("T_right_left disagrees with the rectification"), std::string::npos);
+}
+
+TEST(StereoRig, RejectsInconsistentRigs) {
+  auto error = [](auto change) {
+    StereoRigParams p = RpgParams();
+    change(p);
+    Expected<StereoRig> rig = StereoRig::Create(p);
+    EXPECT_FALSE(rig.ok());
+    return rig.status().message();
+  };
+  EXPECT_NE(
+      error([](StereoRigParams& p) { p.P_right(0, 3) = 23.2327; }).find("swap the left and right"),
+      std::string::npos);
+  EXPECT_NE(error([](StereoRigParams& p) { p.P_right(1, 3) = -5.0; }).find("vertical stereo rig"),
+            std::string::npos);
+  EXPECT_NE(error([](StereoRigParams& p) { p.P_right(0, 0) = 150.0; }).find("not rectified"),
+            std::string::npos);
+  EXPECT_NE(error([](StereoRigParams& p) {
+              p.R_rect_left_left(0, 0) = 0.9;
+            }).find("left rectification rotation is not a rotation"),
+            std::string::npos);
+  EXPECT_NE(error([](StereoRigParams& p) { p.P_left(0, 3) = 1.0; }).find("zero last column"),
+            std::string::npos);
+  EXPECT_NE(
+      error([](StereoRigParams& p) { p.P_left(2, 2) = 2.0; }).find("not a rectified projection"),
+      std::string::npos);
+  EXPECT_NE(error([](StereoRigParams& p) {
+              CameraIntrinsics in = p.right.intrinsics();
+              in.width = 320;
+              p.right = *CameraModel::Create(in);
+            }).find("image sizes differ"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace aavio::geometry

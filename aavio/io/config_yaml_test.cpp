@@ -1,0 +1,108 @@
+#include "aavio/io/config_yaml.hpp"
+
+#include <gtest/gtest.h>
+
+#include "aavio/io/presets.hpp"
+#include "aavio/pipeline/odometry_config.hpp"
+#include "tests/test_utils.hpp"
+
+namespace aavio::io {
+namespace {
+
+TEST(ConfigYaml, FlattensSectionsWithLineOrigins) {
+  const std::string text =
+      "mapping:\n  eta: 0.1\n  static_stereo:\n    step: 3\nimu:\n  gyro_bias_rad_s: [0.01, 0, "
+      "0]\n";
+  Expected<std::vector<ConfigEntry>> entries = ParseConfigYaml(text, "my.yaml");
+  ASSERT_TRUE(entries.ok()) << entries.status().message();
+  ASSERT_EQ(entries->size(), 3u);
+  EXPECT_EQ((*entries)[0].key, "mapping.eta");
+  EXPECT_EQ((*entries)[0].value.origin, "my.yaml:2");
+  EXPECT_EQ((*entries)[1].key, "mapping.static_stereo.step");
+  EXPECT_TRUE((*entries)[2].value.is_list);
+  pipeline::OdometryConfig config;
+  ASSERT_TRUE(ApplyConfigEntries(*entries, &config).ok());
+  EXPECT_DOUBLE_EQ(config.mapping.eta, 0.1);
+  EXPECT_EQ(config.mapping.static_stereo.step, 3);
+  EXPECT_DOUBLE_EQ(config.imu.gyro_bias_rad_s[0], 0.01);
+}
+
+TEST(ConfigYaml, UnknownKeysAndBadValuesNameFileAndLine) {
+  pipeline::OdometryConfig config;
+  auto apply = [&](const std::string& text) {
+    Expected<std::vector<ConfigEntry>> entries = ParseConfigYaml(text, "my.yaml");
+    if (!entries) return entries.status();
+    return ApplyConfigEntries(*entries, &config);
+  };
+  Status s = apply("mapping:\n  static_stereo:\n    zncc_thresold: 0.2\n");
+  EXPECT_NE(s.message().find("unknown configuration key 'mapping.static_stereo.zncc_thresold' "
+                             "(my.yaml:3); did you mean 'mapping.static_stereo.zncc_threshold'?"),
+            std::string::npos)
+      << s.message();
+  s = apply("tracking:\n  max_iterations: ten\n");
+  EXPECT_NE(s.message().find("tracking.max_iterations: expected an integer, got 'ten' (my.yaml:2)"),
+            std::string::npos)
+      << s.message();
+  s = apply("mapping:\n  fusion:\n    strategy: newest\n");
+  EXPECT_NE(s.message().find("expected one of const_frames|const_points"), std::string::npos);
+  s = apply("mapping:\n  eta:\n");
+  EXPECT_NE(s.message().find("my.yaml:2: mapping.eta has no value"), std::string::npos)
+      << s.message();
+  s = apply("mapping:\n  eta: [1, 2\n");
+  EXPECT_NE(s.message().find("YAML syntax error"), std::string::npos);
+  s = apply("imu:\n  gyro_bias_rad_s: [[1], 2, 3]\n");
+  EXPECT_NE(s.message().find("must be a flat list"), std::string::npos);
+}
+
+TEST(ConfigYaml, WrittenConfigReadsBackIdentically) {
+  pipeline::OdometryConfig config;
+  config.mapping.eta = 0.123456789;
+  config.imu.gyro_bias_rad_s = {1e-3, -2e-3, 0.5e-3};
+  config.mapping.fusion.strategy = mapping::FusionStrategy::kConstPoints;
+  const std::string yaml = FormatConfigYaml(FlattenConfig(config), "test header\nline 2");
+  EXPECT_EQ(yaml.rfind("# test header\n# line 2\n", 0), 0u);
+  const std::string path = testing::WriteFile(testing::ScratchDir() / "config.yaml", yaml);
+  Expected<std::vector<ConfigEntry>> entries = ReadConfigYaml(path);
+  ASSERT_TRUE(entries.ok()) << entries.status().message();
+  pipeline::OdometryConfig back;
+  ASSERT_TRUE(ApplyConfigEntries(*entries, &back).ok());
+  EXPECT_EQ(FormatConfigYaml(FlattenConfig(back), ""), FormatConfigYaml(FlattenConfig(config), ""));
+  EXPECT_EQ(back.mapping.eta, 0.123456789);
+  EXPECT_EQ(entries->size(), FlattenConfig(config).size());
+}
+
+TEST(ConfigYaml, WriteTextFileReportsUnwritablePaths) {
+  Status s = WriteTextFile("/nonexistent/folder/config.yaml", "x");
+  EXPECT_EQ(s.code(), StatusCode::kIoError);
+  EXPECT_NE(s.message().find("/nonexistent/folder/config.yaml"), std::string::npos);
+}
+
+TEST(Presets, EveryPresetAppliesAndValidates) {
+  const std::vector<std::string> names = PresetNames();
+  EXPECT_EQ(names, (std::vector<std::string>{"dsec", "rpg"}));
+  for (const std::string& name : names) {
+    Expected<std::vector<ConfigEntry>> entries = PresetEntries(name);
+    ASSERT_TRUE(entries.ok()) << entries.status().message();
+    pipeline::OdometryConfig config;
+    ASSERT_TRUE(ApplyConfigEntries(*entries, &config).ok()) << name;
+    EXPECT_TRUE(config.Validate().ok()) << name << ": " << config.Validate().message();
+  }
+}
+
+TEST(Presets, CarryTheirDatasetsValues) {
+  pipeline::OdometryConfig rpg, dsec;
+  ASSERT_TRUE(ApplyConfigEntries(*PresetEntries("rpg"), &rpg).ok());
+  ASSERT_TRUE(ApplyConfigEntries(*PresetEntries("dsec"), &dsec).ok());
+  EXPECT_DOUBLE_EQ(rpg.mapping.inv_depth_min, 0.2);  // 0.5–5 m indoors
+  EXPECT_DOUBLE_EQ(rpg.mapping.inv_depth_max, 2.0);
+  EXPECT_EQ(rpg.mapping.static_stereo.max_disparity, 40);
+  EXPECT_DOUBLE_EQ(dsec.mapping.inv_depth_max, 0.25);                    // from 4 m
+  EXPECT_EQ(dsec.edge_sampling.num_points, 2500);                        // the paper's ~2.5k
+  EXPECT_DOUBLE_EQ(dsec.adaptive_accumulation.contrast_threshold, 0.5);  // β
+  EXPECT_DOUBLE_EQ(dsec.mapping.eta, 0.2);                               // η
+  EXPECT_EQ(PresetEntries("kitti").status().message(),
+            "no preset named 'kitti'; presets: dsec, rpg");
+}
+
+}  // namespace
+}  // namespace aavio::io

@@ -19,12 +19,13 @@ struct DsecCamera {
 
 Expected<YAML::Node> Path(const YAML::Node& root, std::initializer_list<const char*> keys,
                           const std::string& file) {
-  YAML::Node node = root;
+  YAML::Node node;
+  node.reset(root);  // Node::operator= would assign through the reference (yaml-cpp semantics)
   std::string path;
   for (const char* key : keys) {
     path += (path.empty() ? "" : ".") + std::string(key);
     if (!node.IsMap() || !node[key]) return NotFound(file + ": missing key '" + path + "'");
-    node = node[key];
+    node.reset(node[key]);
   }
   return node;
 }
@@ -118,6 +119,8 @@ Expected<LoadedCalibration> LoadDsecCalibration(const std::string& file) {
   Expected<Eigen::MatrixXd> Q = ReadMatrix(*root, {"disparity_to_depth", "cams_03"}, file, 4, 4);
   if (!Q) return Q.status();
 
+  AAVIO_RETURN_IF_ERROR(geometry::ValidateRotation(*R0, "extrinsics.R_rect0").WithContext(file));
+  AAVIO_RETURN_IF_ERROR(geometry::ValidateRotation(*R3, "extrinsics.R_rect3").WithContext(file));
   // Q = [1 0 0 −cx; 0 1 0 −cy; 0 0 0 f; 0 0 1/b 0] (OpenCV reprojectImageTo3D), b = 1/Q[3][2].
   if (!((*Q)(3, 2) > 0.0)) {
     return ParseError(file + ": disparity_to_depth.cams_03[3][2] = " + StrFormat("%g", (*Q)(3, 2)) +

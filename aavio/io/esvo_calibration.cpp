@@ -96,6 +96,7 @@ Expected<EsvoCameraFile> ReadEsvoCamera(const std::string& file) {
 
   Expected<Eigen::MatrixXd> R = ros("rectification_matrix", 3, 3);
   if (!R) return R.status();
+  AAVIO_RETURN_IF_ERROR(geometry::ValidateRotation(*R, "rectification_matrix").WithContext(file));
   Expected<Eigen::MatrixXd> P = ros("projection_matrix", 3, 4);
   if (!P) return P.status();
 
@@ -110,6 +111,8 @@ Expected<EsvoCameraFile> ReadEsvoCamera(const std::string& file) {
     if (!m) return m.status();
     Expected<Eigen::MatrixXd> Tbc = yaml::CheckedRosMatrix(*m, "T_b_c", 3, 4);
     if (!Tbc) return Tbc.status();
+    AAVIO_RETURN_IF_ERROR(
+        geometry::ValidateRotation(Tbc->leftCols<3>(), "T_b_c rotation").WithContext(file));
     out.T_b_c = geometry::RigidTransform::FromMatrix(Eigen::Matrix<double, 3, 4>(*Tbc));
   }
   return out;
@@ -131,12 +134,16 @@ Expected<LoadedCalibration> LoadEsvoCalibration(const std::string& left_yaml,
   // The baseline as the rig will compute it, for the derivation rule below.
   const double f = right->P(0, 0);
   const double baseline_m = f > 0.0 ? -right->P(0, 3) / f : 0.0;
+  // Rectified right ← rectified left is (I, (−b, 0, 0)), so raw right ← raw left is
+  // [R_rect_rightᵀ R_rect_left | R_rect_rightᵀ (−b, 0, 0)ᵀ].
+  const Eigen::Matrix3d R_rect_left = geometry::Orthonormalize(left->R_rect);
+  const Eigen::Matrix3d R_rect_right = geometry::Orthonormalize(right->R_rect);
   const auto derived_rotation = [&] {
-    return Eigen::Matrix3d(right->R_rect.transpose() * left->R_rect);
+    return Eigen::Matrix3d(R_rect_right.transpose() * R_rect_left);
   };
   const auto derive = [&] {
     params.T_right_left = {derived_rotation(),
-                           right->R_rect.transpose() * Eigen::Vector3d(-baseline_m, 0.0, 0.0)};
+                           R_rect_right.transpose() * Eigen::Vector3d(-baseline_m, 0.0, 0.0)};
   };
   if (!left->T_right_left) {
     derive();

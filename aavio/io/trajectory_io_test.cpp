@@ -1,0 +1,78 @@
+#include "aavio/io/trajectory_io.hpp"
+
+#include <gtest/gtest.h>
+
+#include "tests/test_utils.hpp"
+
+namespace aavio::io {
+namespace {
+
+TEST(TumTrajectory, ReadsWhitespaceCommasAndComments) {
+  const std::string text =
+      "# timestamp tx ty tz qx qy qz qw\n"
+      "\n"
+      "1518196259.772284031 0.726453324 -1.519792664 -0.665759173 0 0 0 1\n"
+      "1518196259.777284031,0.1,0.2,0.3,0,0,0.7071068,0.7071068\r\n"
+      "  1518196259.782284031\t1 2 3   0 0 2.71051e-20 1  \n";
+  Expected<std::vector<geometry::StampedPose>> poses = ParseTumTrajectory(text, "gt.txt");
+  ASSERT_TRUE(poses.ok()) << poses.status().message();
+  ASSERT_EQ(poses->size(), 3u);
+  EXPECT_EQ((*poses)[0].t_ns, 1518196259772284031LL);  // all 19 digits kept
+  EXPECT_EQ((*poses)[1].t_ns, 1518196259777284031LL);
+  EXPECT_NEAR((*poses)[0].T_world_body.t.y(), -1.519792664, 1e-15);
+  EXPECT_NEAR(geometry::LogSO3((*poses)[1].T_world_body.R).norm(), M_PI / 2, 1e-6);
+}
+
+TEST(TumTrajectory, WriteReadRoundTripIsExact) {
+  std::vector<geometry::StampedPose> poses;
+  for (int i = 0; i < 50; ++i) {
+    geometry::StampedPose p;
+    p.t_ns = 36470774788442LL + i * 10'000'001LL;
+    p.T_world_body = {geometry::ExpSO3(Eigen::Vector3d(0.01 * i, -0.3, 0.02 * i)),
+                      Eigen::Vector3d(0.1 * i, -2.0, 1e-3 * i)};
+    poses.push_back(p);
+  }
+  const std::string path = (testing::ScratchDir() / "stamped_traj_estimate.txt").string();
+  ASSERT_TRUE(WriteTumTrajectory(path, poses).ok());
+  ASSERT_TRUE(WriteTumTrajectory(path, poses).ok());  // truncates, never appends
+  Expected<std::vector<geometry::StampedPose>> back = ReadTumTrajectory(path);
+  ASSERT_TRUE(back.ok()) << back.status().message();
+  ASSERT_EQ(back->size(), poses.size());
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    EXPECT_EQ((*back)[i].t_ns, poses[i].t_ns);
+    EXPECT_LT(((*back)[i].T_world_body.t - poses[i].T_world_body.t).norm(), 1e-9);
+    EXPECT_LT(geometry::RotationDistance((*back)[i].T_world_body.R, poses[i].T_world_body.R), 1e-8);
+  }
+  const std::string text = FormatTumTrajectory({poses[0]});
+  EXPECT_EQ(text,
+            "# timestamp tx ty tz qx qy qz qw\n36470.774788442 0.000000000 -2.000000000 "
+            "0.000000000 0.000000000 -0.149438132 0.000000000 0.988771078\n");
+}
+
+TEST(TumTrajectory, MalformedLinesGiveFileAndLine) {
+  struct Case {
+    const char* text;
+    const char* expected;
+  };
+  const std::vector<Case> cases = {
+      {"1 0 0 0 0 0 0 1\n2 0 0 0 0 0 1\n", "t.txt:2: expected 8 columns"},
+      {"1 0 0 0 0 0 0 1\nabc 0 0 0 0 0 0 1\n", "t.txt:2: 'abc' is not a time in seconds"},
+      {"1 0 0 x 0 0 0 1\n", "t.txt:1: tz = 'x' is not a finite number"},
+      {"1 0 0 0 0 0 0 2\n", "t.txt:1: quaternion (qx qy qz qw) has norm 2"},
+      {"# c\n2 0 0 0 0 0 0 1\n1 0 0 0 0 0 0 1\n",
+       "t.txt:3: timestamp 1 is before the one on line 2"},
+      {"1 0 0 0 0 0 0 1\n1.0 0 0 0 0 0 0 1\n", "t.txt:2: timestamp 1.0 repeats"},
+      {"1 0 0 0 0 0 0 nan\n", "qw = 'nan' is not a finite number"},
+  };
+  for (const Case& c : cases) {
+    Expected<std::vector<geometry::StampedPose>> poses = ParseTumTrajectory(c.text, "t.txt");
+    ASSERT_FALSE(poses.ok()) << c.text;
+    EXPECT_NE(poses.status().message().find(c.expected), std::string::npos)
+        << poses.status().message();
+  }
+  EXPECT_EQ(ReadTumTrajectory("/nonexistent.txt").status().code(), StatusCode::kNotFound);
+  EXPECT_TRUE(ParseTumTrajectory("# only a comment\n", "t.txt")->empty());
+}
+
+}  // namespace
+}  // namespace aavio::io

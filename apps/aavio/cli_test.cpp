@@ -1,0 +1,131 @@
+#include "cli.hpp"
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "tests/fixtures/calibrations.hpp"
+#include "tests/test_utils.hpp"
+
+namespace aavio::cli {
+namespace {
+
+struct Result {
+  int code;
+  std::string out, err;
+};
+
+Result RunAavio(const std::vector<std::string>& args) {
+  std::vector<std::string> argv;
+  argv.reserve(args.size() + 1);
+  argv.emplace_back("aavio");
+  for (const std::string& arg : args) argv.push_back(arg);
+  std::ostringstream out, err;
+  const int code = RunCli(argv, out, err);
+  return {code, out.str(), err.str()};
+}
+
+std::string RpgDir() {
+  const auto dir = testing::ScratchDir();
+  testing::WriteFile(dir / "left.yaml", testing::kRpgLeftYaml);
+  testing::WriteFile(dir / "right.yaml", testing::kRpgRightYaml);
+  return dir.string();
+}
+
+TEST(Cli, VersionAndHelp) {
+  Result r = RunAavio({"--version"});
+  EXPECT_EQ(r.code, kExitOk);
+  EXPECT_EQ(r.out.rfind("aavio 0.", 0), 0u);
+  r = RunAavio({"--help"});
+  EXPECT_EQ(r.code, kExitOk);
+  for (const char* command : {"simulate", "run", "eval", "demo", "info", "report", "config"}) {
+    EXPECT_NE(r.out.find(command), std::string::npos) << command;
+  }
+  r = RunAavio({"info", "--help"});
+  EXPECT_EQ(r.code, kExitOk);
+  EXPECT_NE(r.out.find("--json"), std::string::npos);
+}
+
+TEST(Cli, UsageErrors) {
+  Result r = RunAavio({"frobnicate"});
+  EXPECT_EQ(r.code, kExitUsage);
+  EXPECT_NE(r.err.find("aavio --help"), std::string::npos);
+  EXPECT_EQ(RunAavio({"info"}).code, kExitUsage);  // path is required
+  EXPECT_EQ(RunAavio({}).code, kExitUsage);
+}
+
+TEST(Cli, PlannedCommandsSaySoAndFail) {
+  for (const char* command : {"simulate", "run", "eval", "demo", "report"}) {
+    Result r = RunAavio({command, "--preset", "mini"});
+    EXPECT_EQ(r.code, kExitNotImplemented) << command;
+    EXPECT_NE(r.err.find("not built yet"), std::string::npos) << command;
+  }
+}
+
+TEST(Cli, InfoDescribesACalibration) {
+  const std::string dir = RpgDir();
+  Result r = RunAavio({"info", dir});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  EXPECT_NE(r.out.find("240 x 180 px"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("f 156.925 px"), std::string::npos);
+  EXPECT_NE(r.out.find("baseline         0.1480 m"), std::string::npos);
+  EXPECT_NE(r.out.find("plumb_bob"), std::string::npos);
+  r = RunAavio({"info", dir, "--json"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_NEAR(j["rectified"]["baseline_m"].get<double>(), 0.14805, 1e-5);
+  EXPECT_EQ(j["left"]["distortion_model"], "plumb_bob");
+  EXPECT_GT(j["rectified"]["valid_share_left"].get<double>(), 0.8);
+  EXPECT_FALSE(j["T_imu_left"].is_null());
+}
+
+TEST(Cli, InfoReportsBadInputWithoutCrashing) {
+  Result r = RunAavio({"info", "/nonexistent/calib"});
+  EXPECT_EQ(r.code, kExitError);
+  EXPECT_NE(r.err.find("aavio info: error: /nonexistent/calib: no such file"), std::string::npos);
+  const auto dir = testing::ScratchDir();
+  testing::WriteFile(dir / "left.yaml", "image_width: [\n");
+  testing::WriteFile(dir / "right.yaml", testing::kRpgRightYaml);
+  r = RunAavio({"info", dir.string()});
+  EXPECT_EQ(r.code, kExitError);
+  EXPECT_NE(r.err.find("YAML syntax error"), std::string::npos);
+}
+
+TEST(Cli, ConfigPrintsListsAndWritesTheEffectiveConfig) {
+  Result r = RunAavio({"config", "--preset", "rpg", "--set", "mapping.eta=0.15"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  EXPECT_NE(r.out.find("from: preset rpg + --set mapping.eta=0.15"), std::string::npos);
+  EXPECT_NE(r.out.find("  eta: 0.15\n"), std::string::npos);
+  EXPECT_NE(r.out.find("  inv_depth_max: 2.0\n"), std::string::npos);
+
+  const auto dir = testing::ScratchDir();
+  const std::string written = (dir / "config.yaml").string();
+  ASSERT_EQ(RunAavio({"config", "--preset", "dsec", "--out", written}).code, kExitOk);
+  // The written file is a complete config: loading it alone reproduces the same output.
+  Result a = RunAavio({"config", "--preset", "dsec"});
+  Result b = RunAavio({"config", "--config", written});
+  auto body = [](const std::string& s) { return s.substr(s.find("\n", s.find("from:")) + 1); };
+  EXPECT_EQ(body(a.out), body(b.out));
+
+  r = RunAavio({"config", "--list"});
+  EXPECT_NE(r.out.find("mapping.fusion.strategy"), std::string::npos);
+  EXPECT_NE(r.out.find("one of const_frames|const_points"), std::string::npos);
+}
+
+TEST(Cli, ConfigErrorsAreClear) {
+  Result r = RunAavio({"config", "--set", "mapping.etta=0.1"});
+  EXPECT_EQ(r.code, kExitError);
+  EXPECT_NE(r.err.find("did you mean 'mapping.eta'"), std::string::npos) << r.err;
+  r = RunAavio({"config", "--set", "mapping.eta=-1"});
+  EXPECT_EQ(r.code, kExitError);
+  EXPECT_NE(r.err.find("invalid configuration: mapping.eta = -1 must be >= 0"), std::string::npos)
+      << r.err;
+  r = RunAavio({"config", "--preset", "kitti"});
+  EXPECT_NE(r.err.find("no preset named 'kitti'"), std::string::npos);
+  r = RunAavio({"config", "--config", "/nonexistent.yaml"});
+  EXPECT_NE(r.err.find("/nonexistent.yaml: no such file"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace aavio::cli
