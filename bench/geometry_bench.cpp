@@ -4,35 +4,17 @@
 
 #include "aavio/geometry/camera_model.hpp"
 #include "aavio/geometry/rectification.hpp"
+#include "tests/fixtures/cameras.hpp"
 
 namespace {
 
-using aavio::geometry::CameraIntrinsics;
 using aavio::geometry::CameraModel;
-using aavio::geometry::DistortionModel;
-
-CameraModel DsecLeft() {
-  // zurich_city_04a left event camera (ESVO2 calibration).
-  CameraIntrinsics in{640,
-                      480,
-                      553.469,
-                      553.399,
-                      346.653,
-                      216.521,
-                      DistortionModel::kRadtan,
-                      {-0.0935648, 0.194458, 7.64243e-05, 0.00195639}};
-  return *CameraModel::Create(in);
-}
 
 void BM_BuildRectificationMaps(benchmark::State& state) {
-  const CameraModel camera = DsecLeft();
-  Eigen::Matrix3d R;
-  R << 0.999866, -0.00319364, 0.0160517, 0.00322964, 0.999992, -0.00221712, -0.0160445, 0.00226867,
-      0.999869;
-  aavio::geometry::ProjectionMatrix P;
-  P << 536.058, 0, 336.267, 0, 0, 536.058, 222.289, 0, 0, 0, 1, 0;
+  const aavio::testing::RealCamera dsec = aavio::testing::DsecLeft();
+  const CameraModel camera = dsec.Model();
   for (auto _ : state) {
-    auto maps = aavio::geometry::BuildRectificationMaps(camera, R, P);
+    auto maps = aavio::geometry::BuildRectificationMaps(camera, dsec.R_rect, dsec.P);
     benchmark::DoNotOptimize(maps.event_lut.data);
   }
   state.SetItemsProcessed(state.iterations() * 640 * 480);
@@ -40,7 +22,7 @@ void BM_BuildRectificationMaps(benchmark::State& state) {
 BENCHMARK(BM_BuildRectificationMaps)->Unit(benchmark::kMillisecond);
 
 void BM_UnprojectPixel(benchmark::State& state) {
-  const CameraModel camera = DsecLeft();
+  const CameraModel camera = aavio::testing::DsecLeft().Model();
   int i = 0;
   for (auto _ : state) {
     Eigen::Vector3d ray;
@@ -53,7 +35,7 @@ void BM_UnprojectPixel(benchmark::State& state) {
 BENCHMARK(BM_UnprojectPixel);
 
 void BM_ProjectWithJacobian(benchmark::State& state) {
-  const CameraModel camera = DsecLeft();
+  const CameraModel camera = aavio::testing::DsecLeft().Model();
   const Eigen::Vector3d p(0.3, -0.2, 2.0);
   for (auto _ : state) {
     Eigen::Vector2d pixel;

@@ -4,59 +4,14 @@
 
 #include <random>
 
+#include "tests/fixtures/cameras.hpp"
+
 namespace aavio::geometry {
 namespace {
 
-// Real calibrations: rpg DAVIS240C (strong radtan), DSEC (mild radtan, 4 coefficients),
-// a 5-coefficient radtan, and MVSEC / TUM-VIE equidistant cameras.
-std::vector<CameraIntrinsics> Cameras() {
-  return {
-      {240,
-       180,
-       196.639,
-       196.733,
-       105.064,
-       72.4717,
-       DistortionModel::kRadtan,
-       {-0.336733, 0.111789, -0.00140053, -0.000459594}},
-      {640,
-       480,
-       553.469,
-       553.399,
-       346.653,
-       216.521,
-       DistortionModel::kRadtan,
-       {-0.0935648, 0.194458, 7.64243e-05, 0.00195639}},
-      {640,
-       480,
-       327.32749,
-       327.46184,
-       304.97749,
-       235.37621,
-       DistortionModel::kRadtan,
-       {-0.031982, 0.041966, -0.000507, -0.001031, 0.0012}},
-      {346,
-       260,
-       226.38018519795807,
-       226.15002947047415,
-       173.6470807871759,
-       133.73271487507847,
-       DistortionModel::kEquidistant,
-       {-0.048031442223833355, 0.011330957517194437, -0.055378166304281135, 0.021500973881459395}},
-      {1280,
-       720,
-       1049.583,
-       1049.423,
-       634.7184,
-       263.4698,
-       DistortionModel::kEquidistant,
-       {-0.1151966, -0.06222183, 0.2168261, -0.2352862}},
-  };
-}
-
 class CameraModelTest : public ::testing::TestWithParam<int> {
  protected:
-  CameraModel camera() const { return *CameraModel::Create(Cameras()[GetParam()]); }
+  CameraModel camera() const { return testing::AllRealCameras()[GetParam()].Model(); }
 };
 
 TEST_P(CameraModelTest, DistortionJacobianMatchesFiniteDifferences) {
@@ -108,10 +63,14 @@ TEST_P(CameraModelTest, UnprojectInvertsProjectOverTheWholeImage) {
   EXPECT_LT(worst_px, 1e-6);
 }
 
-INSTANTIATE_TEST_SUITE_P(RealCalibrations, CameraModelTest, ::testing::Range(0, 5));
+INSTANTIATE_TEST_SUITE_P(RealCalibrations, CameraModelTest,
+                         ::testing::Range(0, static_cast<int>(testing::AllRealCameras().size())),
+                         [](const ::testing::TestParamInfo<int>& param) {
+                           return testing::AllRealCameras()[param.param].name;
+                         });
 
 TEST(CameraModel, PointsBehindTheCameraDoNotProject) {
-  const CameraModel cam = *CameraModel::Create(Cameras()[0]);
+  const CameraModel cam = testing::RpgLeft().Model();
   Eigen::Vector2d pixel;
   EXPECT_FALSE(cam.Project(Eigen::Vector3d(0, 0, -1), &pixel));
   EXPECT_FALSE(cam.Project(Eigen::Vector3d(1, 0, 0), &pixel));
@@ -128,7 +87,7 @@ TEST(CameraModel, UndistortReportsNonConvergence) {
 
 TEST(CameraModel, CreateRejectsBadIntrinsics) {
   auto with = [](auto change) {
-    CameraIntrinsics in = Cameras()[1];
+    CameraIntrinsics in = testing::DsecLeft().raw;
     change(in);
     return CameraModel::Create(in).status();
   };

@@ -5,95 +5,18 @@
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core/eigen.hpp>
 
+#include "tests/fixtures/cameras.hpp"
+
 namespace aavio::geometry {
 namespace {
-
-struct Case {
-  const char* name;
-  CameraIntrinsics raw;
-  double R_rect[9];
-  double P[12];
-};
-
-// Left cameras of real calibrations: rpg (strong radtan), DSEC (radtan), MVSEC and TUM-VIE
-// (equidistant), and the right camera of rpg (P with the −f·b column).
-std::vector<Case> Cases() {
-  return {
-      {"rpg_left",
-       {240,
-        180,
-        196.639,
-        196.733,
-        105.064,
-        72.4717,
-        DistortionModel::kRadtan,
-        {-0.336733, 0.111789, -0.00140053, -0.000459594}},
-       {0.999791, -0.018779, -0.00802416, 0.0187767, 0.999824, -0.000360707, 0.00802952,
-        0.000209964, 0.999968},
-       {156.925, 0, 108.167, 0, 0, 156.925, 78.4205, 0, 0, 0, 1, 0}},
-      {"rpg_right",
-       {240,
-        180,
-        196.426,
-        196.564,
-        110.745,
-        88.1131,
-        DistortionModel::kRadtan,
-        {-0.346294, 0.12772, -0.000272051, -0.000195801}},
-       {0.999589, 0.0222217, -0.0181009, -0.0222166, 0.999753, 0.000486491, 0.0181073, -8.41512e-05,
-        0.999836},
-       {156.925, 0, 108.167, -23.2327, 0, 156.925, 78.4205, 0, 0, 0, 1, 0}},
-      {"dsec_left",
-       {640,
-        480,
-        553.469,
-        553.399,
-        346.653,
-        216.521,
-        DistortionModel::kRadtan,
-        {-0.0935648, 0.194458, 7.64243e-05, 0.00195639}},
-       {0.999866, -0.00319364, 0.0160517, 0.00322964, 0.999992, -0.00221712, -0.0160445, 0.00226867,
-        0.999869},
-       {536.0578704071853, 0, 336.2674980163574, 0, 0, 536.0578704071853, 222.2888011932373, 0, 0,
-        0, 1, 0}},
-      {"mvsec_left",
-       {346,
-        260,
-        226.38018519795807,
-        226.15002947047415,
-        173.6470807871759,
-        133.73271487507847,
-        DistortionModel::kEquidistant,
-        {-0.048031442223833355, 0.011330957517194437, -0.055378166304281135, 0.021500973881459395}},
-       {0.999877311526236, 0.015019439766575743, -0.004447282784398257, -0.014996983873604017,
-        0.9998748347535599, 0.005040367172759556, 0.004522429630305261, -0.004973052949604937,
-        0.9999774079320989},
-       {199.6530123165822, 0, 177.43276376280926, 0, 0, 199.6530123165822, 126.81215684365904, 0, 0,
-        0, 1, 0}},
-      {"tumvie_left",
-       {1280,
-        720,
-        1049.583,
-        1049.423,
-        634.7184,
-        263.4698,
-        DistortionModel::kEquidistant,
-        {-0.1151966, -0.06222183, 0.2168261, -0.2352862}},
-       {0.999754826676689, -0.01266626048306591, -0.01816183861944204, 0.01247096879510851,
-        0.9998636259452682, -0.01082610035478137, 0.01829648802297759, 0.01059695036109404,
-        0.9997764465964727},
-       {974.8248485687409, 0, 657.1452947326158, 0, 0, 974.8248485687409, 249.0317449660879, 0, 0,
-        0, 1, 0}},
-  };
-}
 
 class RectificationTest : public ::testing::TestWithParam<int> {
  protected:
   void SetUp() override {
-    const Case c = Cases()[GetParam()];
-    camera_ = std::make_unique<CameraModel>(*CameraModel::Create(c.raw));
-    R_ = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(c.R_rect);
-    P_ = Eigen::Map<const Eigen::Matrix<double, 3, 4, Eigen::RowMajor>>(c.P);
+    const testing::RealCamera c = testing::AllRealCameras()[GetParam()];
+    camera_ = std::make_unique<CameraModel>(c.Model());
+    R_ = c.R_rect;
+    P_ = c.P;
     maps_ = BuildRectificationMaps(*camera_, R_, P_);
     cv::eigen2cv(Eigen::Matrix3d(R_), R_cv_);
     cv::eigen2cv(Eigen::Matrix<double, 3, 4>(P_), P_cv_);
@@ -134,7 +57,7 @@ TEST_P(RectificationTest, EventLutAgreesWithOpenCvUndistortPoints) {
     worst = std::max(
         worst, static_cast<double>((ours - Eigen::Vector2f(expected[i].x, expected[i].y)).norm()));
   }
-  EXPECT_LT(worst, 0.01) << Cases()[GetParam()].name;
+  EXPECT_LT(worst, 0.01) << testing::AllRealCameras()[GetParam()].name;
   RecordProperty("max_lut_difference_px", std::to_string(worst));
 }
 
@@ -154,7 +77,7 @@ TEST_P(RectificationTest, RemapMapsAgreeWithOpenCvInitUndistortRectifyMap) {
       worst = std::max(worst, std::hypot(dx, dy));
     }
   }
-  EXPECT_LT(worst, 0.01) << Cases()[GetParam()].name;
+  EXPECT_LT(worst, 0.01) << testing::AllRealCameras()[GetParam()].name;
 }
 
 // The LUT and the remap maps are inverse to each other.
@@ -198,9 +121,10 @@ TEST_P(RectificationTest, ValidMaskMarksPixelsThatSeeTheSensor) {
   EXPECT_GT(valid, w * h / 2);
 }
 
-INSTANTIATE_TEST_SUITE_P(RealCalibrations, RectificationTest, ::testing::Range(0, 5),
+INSTANTIATE_TEST_SUITE_P(RealCalibrations, RectificationTest,
+                         ::testing::Range(0, static_cast<int>(testing::AllRealCameras().size())),
                          [](const ::testing::TestParamInfo<int>& param) {
-                           return std::string(Cases()[param.param].name);
+                           return testing::AllRealCameras()[param.param].name;
                          });
 
 }  // namespace

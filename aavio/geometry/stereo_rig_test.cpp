@@ -2,35 +2,17 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/fixtures/cameras.hpp"
+
 namespace aavio::geometry {
 namespace {
 
 // The rpg DAVIS240C pair (ESVO calibration).
 StereoRigParams RpgParams() {
-  CameraIntrinsics left{240,
-                        180,
-                        196.639,
-                        196.733,
-                        105.064,
-                        72.4717,
-                        DistortionModel::kRadtan,
-                        {-0.336733, 0.111789, -0.00140053, -0.000459594}};
-  CameraIntrinsics right{240,
-                         180,
-                         196.426,
-                         196.564,
-                         110.745,
-                         88.1131,
-                         DistortionModel::kRadtan,
-                         {-0.346294, 0.12772, -0.000272051, -0.000195801}};
-  StereoRigParams p{
-      *CameraModel::Create(left), *CameraModel::Create(right), {}, {}, {}, {}, {}, std::nullopt};
-  p.R_rect_left_left << 0.999791, -0.018779, -0.00802416, 0.0187767, 0.999824, -0.000360707,
-      0.00802952, 0.000209964, 0.999968;
-  p.R_rect_right_right << 0.999589, 0.0222217, -0.0181009, -0.0222166, 0.999753, 0.000486491,
-      0.0181073, -8.41512e-05, 0.999836;
-  p.P_left << 156.925, 0, 108.167, 0, 0, 156.925, 78.4205, 0, 0, 0, 1, 0;
-  p.P_right << 156.925, 0, 108.167, -23.2327, 0, 156.925, 78.4205, 0, 0, 0, 1, 0;
+  const testing::RealCamera left = testing::RpgLeft();
+  const testing::RealCamera right = testing::RpgRight();
+  StereoRigParams p{left.Model(), right.Model(), left.R_rect, right.R_rect,
+                    left.P,       right.P,       {},          std::nullopt};
   Eigen::Matrix<double, 3, 4> T;
   T << 0.9991089760393723, -0.04098010198963204, 0.010093821797214667, -0.1479883582369969,
       0.04098846609277917, 0.9991594254283246, -0.000623077121092687, -0.003289908601915284,
