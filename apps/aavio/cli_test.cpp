@@ -20,7 +20,8 @@ Result RunAavio(const std::vector<std::string>& args) {
   std::vector<std::string> argv;
   argv.reserve(args.size() + 1);
   argv.emplace_back("aavio");
-  for (const std::string& arg : args) argv.push_back(arg);
+  for (const std::string& arg : args)
+    argv.push_back(arg);
   std::ostringstream out, err;
   const int code = RunCli(argv, out, err);
   return {code, out.str(), err.str()};
