@@ -10,6 +10,7 @@
 #include "aavio/geometry/rectification.hpp"
 #include "aavio/io/calibration.hpp"
 #include "cli.hpp"
+#include "info.hpp"
 
 namespace aavio::cli {
 
@@ -50,7 +51,24 @@ double ValidShare(const cv::Mat& mask) {
   return static_cast<double>(cv::countNonZero(mask)) / static_cast<double>(mask.total());
 }
 
+int RunInfoOnData(const InfoOptions& options, Context& ctx) {
+  nlohmann::json j;
+  std::string text;
+  Status status = DescribeData(options.path, &j, &text);
+  if (!status.ok()) {
+    ctx.err << "aavio info: error: " << status.message() << "\n";
+    return kExitError;
+  }
+  if (options.json) {
+    ctx.out << j.dump(2) << "\n";
+  } else {
+    ctx.out << text;
+  }
+  return kExitOk;
+}
+
 int RunInfo(const InfoOptions& options, Context& ctx) {
+  if (LooksLikeData(options.path)) return RunInfoOnData(options, ctx);
   Expected<io::LoadedCalibration> loaded = io::LoadCalibration(options.path);
   if (!loaded) {
     ctx.err << "aavio info: error: " << loaded.status().message() << "\n";

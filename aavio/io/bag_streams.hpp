@@ -1,0 +1,74 @@
+#pragma once
+/// Streams over a ROS1 bag (formats.md §2): events from an EventArray topic (dvs_msgs,
+/// dv_ros_msgs or prophesee_event_msgs, recognised by md5), IMU samples from a sensor_msgs/Imu
+/// topic, ground truth from a geometry_msgs/PoseStamped topic. Events come out in event time, not
+/// bag time, whatever the packet sizes (one-event packets included). Only the chunks that hold
+/// the topic are decompressed, one at a time.
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "aavio/geometry/pose_buffer.hpp"
+#include "aavio/io/rosbag_file.hpp"
+#include "aavio/io/streams.hpp"
+
+namespace aavio::io {
+
+/// Topic names; an empty imu / ground_truth topic means "the only topic of that type".
+struct BagTopics {
+  std::string left_events = "/davis/left/events";
+  std::string right_events = "/davis/right/events";
+  std::string imu;
+  std::string ground_truth;
+};
+
+class BagEventStream final : public EventStream {
+ public:
+  static Expected<std::unique_ptr<BagEventStream>> Open(const std::string& path,
+                                                       const std::string& topic,
+                                                       const StreamOptions& options);
+  ~BagEventStream() override;
+  const StreamInfo& info() const override;
+  Status ReadUntil(TimeNs t_end_ns, std::vector<events::Event>* out) override;
+  Status Seek(TimeNs t_ns) override;
+  bool AtEnd() const override;
+  /// Number of EventArray messages on the topic (from the index).
+  std::uint64_t message_count() const;
+
+ private:
+  struct State;
+  explicit BagEventStream(std::unique_ptr<State> state);
+  std::unique_ptr<State> s_;
+};
+
+class BagImuStream final : public ImuStream {
+ public:
+  /// `topic` empty: the bag's only sensor_msgs/Imu topic.
+  static Expected<std::unique_ptr<BagImuStream>> Open(const std::string& path,
+                                                     const std::string& topic,
+                                                     const StreamOptions& options);
+  ~BagImuStream() override;
+  const StreamInfo& info() const override;
+  Status ReadUntil(TimeNs t_end_ns, std::vector<imu::ImuSample>* out) override;
+  Status Seek(TimeNs t_ns) override;
+  bool AtEnd() const override;
+
+ private:
+  struct State;
+  explicit BagImuStream(std::unique_ptr<State> state);
+  std::unique_ptr<State> s_;
+};
+
+/// All poses of a geometry_msgs/PoseStamped topic (empty: the only one), sorted by stamp.
+Expected<std::vector<geometry::StampedPose>> ReadBagPoses(const std::string& path,
+                                                          const std::string& topic);
+
+/// "topic (type, N msgs)" for every connection: for messages about missing topics.
+std::string DescribeBagTopics(const rosbag::BagFile& bag);
+
+/// The topic of the only connection with the given md5, or an error listing the topics.
+Expected<std::string> FindTopicByType(const rosbag::BagFile& bag, const char* md5,
+                                      const char* type_name);
+
+}  // namespace aavio::io

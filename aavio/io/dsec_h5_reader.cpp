@@ -1,0 +1,293 @@
+#include "aavio/io/dsec_h5_reader.hpp"
+
+#include <algorithm>
+#include <array>
+#include <filesystem>
+
+#include "aavio/common/format.hpp"
+#include "aavio/io/hdf5_util.hpp"
+
+namespace aavio::io {
+
+namespace {
+
+const char* kFields[4] = {"/events/x", "/events/y", "/events/p", "/events/t"};
+
+}  // namespace
+
+struct DsecH5EventStream::State {
+  std::string path;
+  StreamOptions options;
+  StreamInfo info;
+  h5::Handle file;
+  std::array<h5::Handle, 4> datasets;  // x, y, p, t
+  std::int64_t t_offset_us = 0;
+  std::vector<std::uint64_t> ms_to_idx;
+  std::uint64_t count = 0;
+  std::uint64_t next_index = 0;  // next event to read from the file
+  ReorderBuffer<events::Event> reorder{0};
+  std::vector<std::uint16_t> xs, ys;
+  std::vector<std::int16_t> ps;
+  std::vector<std::int64_t> ts;
+
+  Status ReadRange(std::uint64_t begin, std::uint64_t n);
+  Status ReadBlock();
+  Expected<std::int64_t> ReadT(std::uint64_t index);
+};
+
+namespace {
+
+Status ReadSlab(hid_t dataset, hid_t mem_type, std::uint64_t begin, std::uint64_t n, void* buffer,
+                const std::string& path, const char* name) {
+  h5::Handle space(H5Dget_space(dataset), H5Sclose);
+  const hsize_t start = begin;
+  const hsize_t count = n;
+  h5::Handle mem(H5Screate_simple(1, &count, nullptr), H5Sclose);
+  if (!space.valid() || !mem.valid() ||
+      H5Sselect_hyperslab(space.get(), H5S_SELECT_SET, &start, nullptr, &count, nullptr) < 0 ||
+      H5Dread(dataset, mem_type, mem.get(), space.get(), H5P_DEFAULT, buffer) < 0) {
+    const std::string detail = h5::TakeErrorMessage();
+    return IoError(path + ": reading " + name + " events [" + std::to_string(begin) + ", " +
+                   std::to_string(begin + n) + ") failed; the file is truncated or corrupt" +
+                   (detail.empty() ? "" : " (HDF5: " + detail + ")"));
+  }
+  return Status::Ok();
+}
+
+}  // namespace
+
+Status DsecH5EventStream::State::ReadRange(std::uint64_t begin, std::uint64_t n) {
+  xs.resize(n);
+  ys.resize(n);
+  ps.resize(n);
+  ts.resize(n);
+  AAVIO_RETURN_IF_ERROR(
+      ReadSlab(datasets[0].get(), H5T_NATIVE_UINT16, begin, n, xs.data(), path, kFields[0]));
+  AAVIO_RETURN_IF_ERROR(
+      ReadSlab(datasets[1].get(), H5T_NATIVE_UINT16, begin, n, ys.data(), path, kFields[1]));
+  AAVIO_RETURN_IF_ERROR(
+      ReadSlab(datasets[2].get(), H5T_NATIVE_INT16, begin, n, ps.data(), path, kFields[2]));
+  AAVIO_RETURN_IF_ERROR(
+      ReadSlab(datasets[3].get(), H5T_NATIVE_INT64, begin, n, ts.data(), path, kFields[3]));
+  return Status::Ok();
+}
+
+Status DsecH5EventStream::State::ReadBlock() {
+  const std::uint64_t n = std::min<std::uint64_t>(options.block_events, count - next_index);
+  AAVIO_RETURN_IF_ERROR(ReadRange(next_index, n));
+  const int width = options.width;
+  const int height = options.height;
+  for (std::uint64_t i = 0; i < n; ++i) {
+    if (width > 0 && (xs[i] >= width || ys[i] >= height)) {
+      return InvalidArgument(path + ": event " + std::to_string(next_index + i) + " at (" +
+                             std::to_string(xs[i]) + ", " + std::to_string(ys[i]) +
+                             ") is outside the " + std::to_string(width) + "x" +
+                             std::to_string(height) +
+                             " sensor; does the calibration belong to this recording?");
+    }
+    const events::Event e{(ts[i] + t_offset_us) * kNsPerUs, xs[i], ys[i],
+                          static_cast<std::uint8_t>(ps[i] > 0 ? 1 : 0)};
+    Status status = reorder.Push(e, "");
+    if (!status.ok()) {
+      return InvalidArgument(path + ": event " + std::to_string(next_index + i) + status.message());
+    }
+  }
+  next_index += n;
+  return Status::Ok();
+}
+
+Expected<std::int64_t> DsecH5EventStream::State::ReadT(std::uint64_t index) {
+  std::int64_t t = 0;
+  AAVIO_RETURN_IF_ERROR(ReadSlab(datasets[3].get(), H5T_NATIVE_INT64, index, 1, &t, path, kFields[3]));
+  return t;
+}
+
+DsecH5EventStream::DsecH5EventStream(std::unique_ptr<State> state) : s_(std::move(state)) {}
+DsecH5EventStream::~DsecH5EventStream() = default;
+
+Expected<std::unique_ptr<DsecH5EventStream>> DsecH5EventStream::Open(
+    const std::string& path, const StreamOptions& options) {
+  h5::SilenceErrorPrinting();
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) return NotFound(path + ": no such file");
+  if (H5Fis_hdf5(path.c_str()) <= 0) {
+    const std::string detail = h5::TakeErrorMessage();
+    return ParseError(path + ": not a readable HDF5 file (truncated or not HDF5" +
+                      (detail.empty() ? "" : ": " + detail) + ")");
+  }
+  auto s = std::make_unique<State>();
+  s->path = path;
+  s->options = options;
+  s->reorder = ReorderBuffer<events::Event>(options.max_reorder_ns);
+  s->file = h5::Handle(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
+  if (!s->file.valid()) {
+    const std::string detail = h5::TakeErrorMessage();
+    return ParseError(path + ": cannot open as HDF5 (" + detail + ")");
+  }
+  // A chunk cache large enough for one chunk of each dataset avoids decompressing twice.
+  h5::Handle access(H5Pcreate(H5P_DATASET_ACCESS), H5Pclose);
+  H5Pset_chunk_cache(access.get(), 12421, 64u << 20, 1.0);
+
+  std::vector<std::string> missing;
+  for (const char* name : kFields) {
+    if (!h5::LinkExists(s->file.get(), name)) missing.emplace_back(name);
+  }
+  if (!missing.empty()) {
+    std::string list;
+    for (const std::string& m : missing) list += (list.empty() ? "" : ", ") + m;
+    return ParseError(path + ": not a DSEC-layout event file: missing " + list +
+                      " (expected /events/x, /events/y, /events/p, /events/t)");
+  }
+  std::int64_t n = -1;
+  for (int i = 0; i < 4; ++i) {
+    s->datasets[i] = h5::Handle(H5Dopen2(s->file.get(), kFields[i], access.get()), H5Dclose);
+    if (!s->datasets[i].valid()) {
+      return ParseError(path + ": cannot open " + kFields[i] + " (" + h5::TakeErrorMessage() + ")");
+    }
+    h5::Handle type(H5Dget_type(s->datasets[i].get()), H5Tclose);
+    if (H5Tget_class(type.get()) != H5T_INTEGER) {
+      return ParseError(path + ": " + kFields[i] +
+                        " must hold integers (DSEC: x, y uint16; p uint8; t uint32 or int64)");
+    }
+    h5::Handle space(H5Dget_space(s->datasets[i].get()), H5Sclose);
+    hsize_t dims[2] = {0, 0};
+    if (H5Sget_simple_extent_ndims(space.get()) != 1) {
+      return ParseError(path + ": " + kFields[i] + " must be one-dimensional (N,)");
+    }
+    H5Sget_simple_extent_dims(space.get(), dims, nullptr);
+    if (n >= 0 && static_cast<std::int64_t>(dims[0]) != n) {
+      return ParseError(path + ": /events/x, y, p and t must have the same length (" +
+                        std::to_string(n) + " vs " + std::to_string(dims[0]) + " in " +
+                        kFields[i] + ")");
+    }
+    n = static_cast<std::int64_t>(dims[0]);
+    AAVIO_RETURN_IF_ERROR(h5::CheckFilters(s->datasets[i].get(), path, kFields[i]));
+  }
+  s->count = static_cast<std::uint64_t>(n);
+
+  if (h5::LinkExists(s->file.get(), "/t_offset")) {
+    h5::Handle d(H5Dopen2(s->file.get(), "/t_offset", H5P_DEFAULT), H5Dclose);
+    h5::Handle space(H5Dget_space(d.get()), H5Sclose);
+    if (H5Sget_simple_extent_npoints(space.get()) != 1) {
+      return ParseError(path + ": /t_offset must hold exactly one number (µs)");
+    }
+    if (H5Dread(d.get(), H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, &s->t_offset_us) < 0) {
+      return ParseError(path + ": cannot read /t_offset (" + h5::TakeErrorMessage() + ")");
+    }
+  }
+
+  std::string notes;
+  if (h5::LinkExists(s->file.get(), "/ms_to_idx")) {
+    h5::Handle d(H5Dopen2(s->file.get(), "/ms_to_idx", H5P_DEFAULT), H5Dclose);
+    h5::Handle space(H5Dget_space(d.get()), H5Sclose);
+    const hssize_t m = H5Sget_simple_extent_npoints(space.get());
+    s->ms_to_idx.resize(m > 0 ? static_cast<std::size_t>(m) : 0);
+    if (h5::CheckFilters(d.get(), path, "/ms_to_idx").ok() && m > 0 &&
+        H5Dread(d.get(), H5T_NATIVE_UINT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, s->ms_to_idx.data()) >= 0) {
+      const bool monotone = std::is_sorted(s->ms_to_idx.begin(), s->ms_to_idx.end()) &&
+                            s->ms_to_idx.back() <= s->count;
+      if (!monotone) {
+        s->ms_to_idx.clear();
+        notes = "; ms_to_idx inconsistent, ignored";
+      }
+    } else {
+      h5::TakeErrorMessage();
+      s->ms_to_idx.clear();
+      notes = "; ms_to_idx unreadable, ignored";
+    }
+  }
+
+  s->info.description = "DSEC events.h5: " + path + notes;
+  s->info.count = n;
+  if (n > 0) {
+    Expected<std::int64_t> first = s->ReadT(0);
+    if (!first) return first.status();
+    Expected<std::int64_t> last = s->ReadT(static_cast<std::uint64_t>(n - 1));
+    if (!last) return last.status();
+    s->info.t_first_ns = (*first + s->t_offset_us) * kNsPerUs;
+    s->info.t_last_ns = (*last + s->t_offset_us) * kNsPerUs;
+  }
+  return std::unique_ptr<DsecH5EventStream>(new DsecH5EventStream(std::move(s)));
+}
+
+const StreamInfo& DsecH5EventStream::info() const { return s_->info; }
+const std::vector<std::uint64_t>& DsecH5EventStream::ms_to_idx() const { return s_->ms_to_idx; }
+std::int64_t DsecH5EventStream::t_offset_us() const { return s_->t_offset_us; }
+
+Status DsecH5EventStream::ReadUntil(TimeNs t_end_ns, std::vector<events::Event>* out) {
+  while (!s_->reorder.CanRelease(t_end_ns) && s_->next_index < s_->count) {
+    AAVIO_RETURN_IF_ERROR(s_->ReadBlock());
+  }
+  s_->reorder.Release(t_end_ns, out);
+  return Status::Ok();
+}
+
+bool DsecH5EventStream::AtEnd() const {
+  return s_->next_index >= s_->count && s_->reorder.size() == 0;
+}
+
+Status DsecH5EventStream::Seek(TimeNs t_ns) {
+  // Start early by the reorder window so late events at or after t_ns are not lost.
+  const TimeNs from_ns = t_ns - s_->options.max_reorder_ns;
+  const std::int64_t rel_us = from_ns / kNsPerUs - s_->t_offset_us - 1;
+  std::uint64_t lo = 0;
+  std::uint64_t hi = s_->count;
+  if (rel_us > 0 && !s_->ms_to_idx.empty()) {
+    // ms_to_idx[ms] = first event with t >= 1000 ms: a bracket for the binary search.
+    const std::uint64_t ms = static_cast<std::uint64_t>(rel_us) / 1000;
+    if (ms < s_->ms_to_idx.size()) {
+      lo = s_->ms_to_idx[ms];
+      if (ms + 1 < s_->ms_to_idx.size()) hi = std::min(hi, s_->ms_to_idx[ms + 1]);
+    } else {
+      lo = s_->ms_to_idx.back();
+    }
+  }
+  while (lo < hi) {  // first index with t >= rel_us
+    const std::uint64_t mid = lo + (hi - lo) / 2;
+    Expected<std::int64_t> t = s_->ReadT(mid);
+    if (!t) return t.status();
+    if (*t < rel_us) {
+      lo = mid + 1;
+    } else {
+      hi = mid;
+    }
+  }
+  s_->next_index = lo;
+  s_->reorder.Reset(t_ns);
+  return Status::Ok();
+}
+
+}  // namespace aavio::io
+
+namespace aavio::io {
+
+Expected<cv::Mat> ReadDsecRectifyMap(const std::string& path) {
+  h5::SilenceErrorPrinting();
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) return NotFound(path + ": no such file");
+  if (H5Fis_hdf5(path.c_str()) <= 0) {
+    h5::TakeErrorMessage();
+    return ParseError(path + ": not a readable HDF5 file (truncated or not HDF5)");
+  }
+  h5::Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
+  if (!file.valid() || !h5::LinkExists(file.get(), "/rectify_map")) {
+    h5::TakeErrorMessage();
+    return ParseError(path + ": no /rectify_map dataset (expected float32 (height, width, 2))");
+  }
+  h5::Handle d(H5Dopen2(file.get(), "/rectify_map", H5P_DEFAULT), H5Dclose);
+  AAVIO_RETURN_IF_ERROR(h5::CheckFilters(d.get(), path, "/rectify_map"));
+  h5::Handle space(H5Dget_space(d.get()), H5Sclose);
+  hsize_t dims[3] = {0, 0, 0};
+  if (H5Sget_simple_extent_ndims(space.get()) != 3 ||
+      (H5Sget_simple_extent_dims(space.get(), dims, nullptr), dims[2] != 2) || dims[0] == 0 ||
+      dims[1] == 0 || dims[0] > 100000 || dims[1] > 100000) {
+    return ParseError(path + ": /rectify_map must have shape (height, width, 2)");
+  }
+  cv::Mat map(static_cast<int>(dims[0]), static_cast<int>(dims[1]), CV_32FC2);
+  if (H5Dread(d.get(), H5T_NATIVE_FLOAT, H5S_ALL, H5S_ALL, H5P_DEFAULT, map.data) < 0) {
+    return IoError(path + ": reading /rectify_map failed (" + h5::TakeErrorMessage() + ")");
+  }
+  return map;
+}
+
+}  // namespace aavio::io

@@ -1,0 +1,77 @@
+#include "aavio/io/hdf5_util.hpp"
+
+#include <string>
+
+namespace aavio::io::h5 {
+
+void SilenceErrorPrinting() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
+
+namespace {
+
+herr_t CollectMessage(unsigned /*n*/, const H5E_error2_t* error, void* data) {
+  auto* messages = static_cast<std::string*>(data);
+  if (error && error->desc && *error->desc) {
+    if (!messages->empty()) *messages += "; ";
+    *messages += error->desc;
+  }
+  return 0;
+}
+
+}  // namespace
+
+std::string TakeErrorMessage() {
+  std::string messages;
+  H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, CollectMessage, &messages);
+  H5Eclear2(H5E_DEFAULT);
+  return messages;
+}
+
+Status CheckFilters(hid_t dataset, const std::string& file, const std::string& name) {
+  Handle plist(H5Dget_create_plist(dataset), H5Pclose);
+  if (!plist.valid()) return IoError(file + ": " + name + ": cannot read its storage properties");
+  const int count = H5Pget_nfilters(plist.get());
+  for (int i = 0; i < count; ++i) {
+    unsigned flags = 0;
+    size_t n_values = 0;
+    unsigned config = 0;
+    char filter_name[128] = {0};
+    const H5Z_filter_t id = H5Pget_filter2(plist.get(), static_cast<unsigned>(i), &flags,
+                                           &n_values, nullptr, sizeof(filter_name), filter_name,
+                                           &config);
+    if (id < 0) continue;
+    if (H5Zfilter_avail(id) > 0) continue;
+    H5Eclear2(H5E_DEFAULT);
+    if (id == 32001) {
+      return FailedPrecondition(
+          file + ": " + name +
+          " is compressed with the blosc filter (HDF5 filter 32001), which is not installed; "
+          "install the Debian package hdf5-filter-plugin-blosc-serial (scripts/setup.sh does) and "
+          "leave HDF5_PLUGIN_PATH unset so HDF5 finds it");
+    }
+    std::string hint;
+    if (id == 32015) hint = " (zstd; no Debian package provides it: recompress the file with blosc)";
+    if (id == 32000) hint = " (lzf: install hdf5-plugin-lzf)";
+    if (id == 32004 || id == 307) hint = " (install hdf5-filter-plugin)";
+    return FailedPrecondition(file + ": " + name + " needs HDF5 filter " + std::to_string(id) +
+                              " '" + filter_name + "', which is not available" + hint);
+  }
+  return Status::Ok();
+}
+
+bool LinkExists(hid_t file, const char* path) {
+  // Check each component: H5Lexists fails on a path whose parent group is missing.
+  std::string partial;
+  std::string rest = path;
+  while (!rest.empty()) {
+    const std::size_t slash = rest.find('/', 1);
+    partial += rest.substr(0, slash);
+    rest = slash == std::string::npos ? "" : rest.substr(slash);
+    if (H5Lexists(file, partial.c_str(), H5P_DEFAULT) <= 0) {
+      H5Eclear2(H5E_DEFAULT);
+      return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace aavio::io::h5

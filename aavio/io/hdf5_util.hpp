@@ -1,0 +1,59 @@
+#pragma once
+/// Internal helpers over the HDF5 C API: owning handles and readable errors. Only the io module
+/// includes this header.
+
+#include <hdf5.h>
+
+#include <string>
+#include <utility>
+
+#include "aavio/common/status.hpp"
+
+namespace aavio::io::h5 {
+
+/// Owns an HDF5 identifier and closes it with the matching H5*close.
+class Handle {
+ public:
+  using Closer = herr_t (*)(hid_t);
+  Handle() = default;
+  Handle(hid_t id, Closer closer) : id_(id), closer_(closer) {}
+  Handle(Handle&& other) noexcept : id_(std::exchange(other.id_, -1)), closer_(other.closer_) {}
+  Handle& operator=(Handle&& other) noexcept {
+    if (this != &other) {
+      Reset();
+      id_ = std::exchange(other.id_, -1);
+      closer_ = other.closer_;
+    }
+    return *this;
+  }
+  Handle(const Handle&) = delete;
+  Handle& operator=(const Handle&) = delete;
+  ~Handle() { Reset(); }
+
+  hid_t get() const { return id_; }
+  /// Gives up ownership (the caller closes the id).
+  hid_t Release() { return std::exchange(id_, -1); }
+  bool valid() const { return id_ >= 0; }
+  void Reset() {
+    if (id_ >= 0 && closer_) closer_(id_);
+    id_ = -1;
+  }
+
+ private:
+  hid_t id_ = -1;
+  Closer closer_ = nullptr;
+};
+
+/// Silences HDF5's default printing of its error stack (aavio reports errors itself). Idempotent.
+void SilenceErrorPrinting();
+
+/// The most specific message on HDF5's current error stack ("" if empty), then clears it.
+std::string TakeErrorMessage();
+
+/// Ok if every filter of the dataset is available; otherwise an error that names the filter and
+/// the Debian package providing it (blosc: hdf5-filter-plugin-blosc-serial).
+Status CheckFilters(hid_t dataset, const std::string& file, const std::string& name);
+
+bool LinkExists(hid_t file, const char* path);
+
+}  // namespace aavio::io::h5

@@ -1,0 +1,117 @@
+#pragma once
+/// A sequence = left and right event sources, an optional IMU, a calibration and optional ground
+/// truth (design.md §4). It is described by a `sequence.yaml`:
+///
+///   name: box2_twin
+///   calibration: calibration            # ESVO folder, left.yaml, or DSEC cam_to_cam.yaml
+///   events:
+///     left: events/left/events.h5       # .h5 DSEC layout | .bag ROS1 bag | .txt text
+///     right: events/right/events.h5
+///     left_topic: /davis/left/events    # bags only (these are the defaults)
+///     right_topic: /davis/right/events
+///   imu:                                # optional
+///     path: imu.txt                     # .txt (layout: ecd | tum_vie) or .bag (topic)
+///     topic: /davis/left/imu            # bags; empty = the only sensor_msgs/Imu topic
+///     layout: ecd
+///   ground_truth:                       # optional
+///     trajectory: groundtruth.txt       # TUM text, or a bag with a PoseStamped topic
+///     topic: /gt/pose
+///     depth: depth                      # folder of 16-bit disparity PNGs
+///
+/// Relative paths resolve against the folder of the sequence.yaml. Besides sequence.yaml,
+/// DescribeSequence accepts a DSEC sequence folder (events/{left,right}/events.h5 +
+/// calibration/cam_to_cam.yaml) and a bag file (with a calibration given separately).
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "aavio/common/status.hpp"
+#include "aavio/io/bag_streams.hpp"
+#include "aavio/io/streams.hpp"
+#include "aavio/io/text_streams.hpp"
+
+namespace aavio::io {
+
+enum class SourceFormat { kDsecH5, kBag, kText };
+const char* SourceFormatName(SourceFormat format);
+/// From the file name: .h5/.hdf5 DSEC layout, .bag, .txt; otherwise an error.
+Expected<SourceFormat> DetectSourceFormat(const std::string& path);
+
+struct SourceSpec {
+  SourceFormat format = SourceFormat::kDsecH5;
+  std::string path;   ///< absolute, or relative to the working folder
+  std::string topic;  ///< bags
+  ImuTextLayout imu_layout = ImuTextLayout::kEcd;  ///< IMU text files
+};
+
+struct SequenceDescription {
+  std::string name;
+  std::string origin;       ///< the file or folder it was read from
+  std::string calibration;  ///< path for LoadCalibration; empty if none was given
+  SourceSpec left;
+  SourceSpec right;
+  std::optional<SourceSpec> imu;
+  std::optional<SourceSpec> gt_trajectory;  ///< text (TUM) or bag (PoseStamped topic)
+  std::string gt_depth;
+};
+
+Expected<SequenceDescription> ReadSequenceYaml(const std::string& path);
+/// Writes `description` as sequence.yaml at `path`; paths are written relative to its folder when
+/// they lie inside it.
+Status WriteSequenceYaml(const std::string& path, const SequenceDescription& description);
+
+/// A sequence.yaml (or a folder holding one), a DSEC sequence folder or a bag. `calibration`
+/// (if not empty) replaces the one the description names.
+Expected<SequenceDescription> DescribeSequence(const std::string& path,
+                                               const std::string& calibration = "");
+
+Expected<std::unique_ptr<EventStream>> OpenEventStream(const SourceSpec& spec,
+                                                       const StreamOptions& options);
+Expected<std::unique_ptr<ImuStream>> OpenImuStream(const SourceSpec& spec,
+                                                   const StreamOptions& options);
+
+/// Everything of every stream within [t_begin_ns, t_end_ns).
+struct SensorPacket {
+  TimeNs t_begin_ns = 0;
+  TimeNs t_end_ns = 0;
+  std::vector<events::Event> left;
+  std::vector<events::Event> right;
+  std::vector<imu::ImuSample> imu;
+};
+
+struct SequenceReaderOptions {
+  TimeNs packet_ns = kNsPerMs;  ///< length of each packet
+  StreamOptions stream;         ///< reorder window, sensor size, block size
+};
+
+/// Merges the streams of a sequence into consecutive packets of data time.
+class SequenceReader {
+ public:
+  static Expected<std::unique_ptr<SequenceReader>> Open(const SequenceDescription& description,
+                                                       const SequenceReaderOptions& options);
+  SequenceReader(std::unique_ptr<EventStream> left, std::unique_ptr<EventStream> right,
+                 std::unique_ptr<ImuStream> imu, const SequenceReaderOptions& options);
+
+  /// Fills the next packet; returns false (and leaves it empty) once every stream has ended.
+  Expected<bool> Next(SensorPacket* packet);
+  /// The next packet starts at t_ns.
+  Status Seek(TimeNs t_ns);
+
+  TimeNs start_ns() const { return start_ns_; }  ///< earliest stamp of any stream
+  TimeNs end_ns() const { return end_ns_; }      ///< latest stamp of any stream (as known)
+  const EventStream& left() const { return *left_; }
+  const EventStream& right() const { return *right_; }
+  const ImuStream* imu() const { return imu_.get(); }
+
+ private:
+  std::unique_ptr<EventStream> left_, right_;
+  std::unique_ptr<ImuStream> imu_;
+  SequenceReaderOptions options_;
+  TimeNs start_ns_ = 0;
+  TimeNs end_ns_ = 0;
+  TimeNs next_ns_ = 0;
+};
+
+}  // namespace aavio::io

@@ -1,0 +1,185 @@
+// `aavio info` on data: an event file (.h5, .txt), a bag, or a whole sequence.
+#include <filesystem>
+#include <set>
+#include <nlohmann/json.hpp>
+#include <ostream>
+
+#include "aavio/common/format.hpp"
+#include "aavio/io/bag_streams.hpp"
+#include "aavio/io/calibration.hpp"
+#include "aavio/io/dsec_h5_reader.hpp"
+#include "aavio/io/rosbag_messages.hpp"
+#include "aavio/io/sequence.hpp"
+#include "aavio/io/stream_stats.hpp"
+#include "aavio/io/trajectory_io.hpp"
+#include "info.hpp"
+
+namespace aavio::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+nlohmann::json EventJson(const io::EventStats& s, const io::StreamInfo& info) {
+  nlohmann::json j = {{"events", s.count},
+                      {"t_first_s", FormatSecondsNs(s.t_first_ns)},
+                      {"t_last_s", FormatSecondsNs(s.t_last_ns)},
+                      {"duration_s", NsToSeconds(s.t_last_ns - s.t_first_ns)},
+                      {"mean_rate_ev_s", s.mean_rate_hz},
+                      {"peak_rate_ev_s", s.peak_rate_hz},
+                      {"source", info.description}};
+  if (info.width > 0) j["resolution"] = {info.width, info.height};
+  if (s.max_x >= 0) j["max_xy"] = {s.max_x, s.max_y};
+  return j;
+}
+
+std::string EventText(const io::EventStats& s, const io::StreamInfo& info) {
+  std::string text = StrFormat("%lld events, %s .. %s s (%.3f s), mean %.3f Mev/s, peak %.3f Mev/s",
+                               static_cast<long long>(s.count), FormatSecondsNs(s.t_first_ns).c_str(),
+                               FormatSecondsNs(s.t_last_ns).c_str(),
+                               NsToSeconds(s.t_last_ns - s.t_first_ns), s.mean_rate_hz * 1e-6,
+                               s.peak_rate_hz * 1e-6);
+  if (info.width > 0) text += StrFormat(", %d x %d", info.width, info.height);
+  if (s.max_x >= 0) text += StrFormat(", max x %d y %d", s.max_x, s.max_y);
+  return text;
+}
+
+Status DescribeEvents(const std::string& label, const io::SourceSpec& spec,
+                      const io::StreamOptions& options, nlohmann::json* j, std::string* text) {
+  Expected<std::unique_ptr<io::EventStream>> stream = io::OpenEventStream(spec, options);
+  if (!stream) return stream.status();
+  Expected<io::EventStats> stats = io::ComputeEventStats(**stream);
+  if (!stats) return stats.status();
+  (*j)[label] = EventJson(*stats, (*stream)->info());
+  *text += StrFormat("  %-16s %s\n", label.c_str(), EventText(*stats, (*stream)->info()).c_str());
+  *text += StrFormat("  %-16s %s\n", "", (*stream)->info().description.c_str());
+  return Status::Ok();
+}
+
+Status DescribeImu(const io::SourceSpec& spec, const io::StreamOptions& options, nlohmann::json* j,
+                   std::string* text) {
+  Expected<std::unique_ptr<io::ImuStream>> stream = io::OpenImuStream(spec, options);
+  if (!stream) return stream.status();
+  Expected<io::ImuStats> stats = io::ComputeImuStats(**stream);
+  if (!stats) return stats.status();
+  (*j)["imu"] = {{"samples", stats->count},
+                 {"rate_hz", stats->rate_hz},
+                 {"t_first_s", FormatSecondsNs(stats->t_first_ns)},
+                 {"t_last_s", FormatSecondsNs(stats->t_last_ns)},
+                 {"source", (*stream)->info().description}};
+  *text += StrFormat("  %-16s %lld samples at %.1f Hz, %s .. %s s\n", "imu",
+                     static_cast<long long>(stats->count), stats->rate_hz,
+                     FormatSecondsNs(stats->t_first_ns).c_str(),
+                     FormatSecondsNs(stats->t_last_ns).c_str());
+  return Status::Ok();
+}
+
+Status DescribeBag(const std::string& path, nlohmann::json* j, std::string* text) {
+  Expected<std::unique_ptr<io::rosbag::BagFile>> bag = io::rosbag::BagFile::Open(path);
+  if (!bag) return bag.status();
+  (*j)["kind"] = "bag";
+  *text += "bag  " + path + "\n  topics           " + io::DescribeBagTopics(**bag) + "\n";
+  nlohmann::json topics = nlohmann::json::object();
+  std::set<std::string> seen;
+  for (const io::rosbag::Connection& c : (*bag)->connections()) {
+    if (!seen.insert(c.topic).second) continue;
+    topics[c.topic] = {{"type", c.type}, {"md5sum", c.md5sum}};
+    if (c.md5sum == io::rosbag::kEventArray.md5sum ||
+        c.md5sum == io::rosbag::kLegacyEventArrayMd5) {
+      AAVIO_RETURN_IF_ERROR(DescribeEvents(c.topic, {io::SourceFormat::kBag, path, c.topic, {}}, {},
+                                           j, text));
+    } else if (c.md5sum == io::rosbag::kImu.md5sum) {
+      AAVIO_RETURN_IF_ERROR(DescribeImu({io::SourceFormat::kBag, path, c.topic, {}}, {}, j, text));
+    }
+  }
+  (*j)["topics"] = topics;
+  return Status::Ok();
+}
+
+Status DescribeSequenceData(const io::SequenceDescription& d, nlohmann::json* j, std::string* text) {
+  (*j)["kind"] = "sequence";
+  (*j)["name"] = d.name;
+  *text += "sequence  " + d.name + "  (" + d.origin + ")\n";
+  io::StreamOptions options;
+  if (!d.calibration.empty()) {
+    Expected<io::LoadedCalibration> calib = io::LoadCalibration(d.calibration);
+    if (!calib) return calib.status();
+    const geometry::StereoRig& rig = calib->rig;
+    options.width = rig.width();
+    options.height = rig.height();
+    (*j)["calibration"] = {{"path", d.calibration},
+                           {"resolution", {rig.width(), rig.height()}},
+                           {"focal_px", rig.focal_px()},
+                           {"baseline_m", rig.baseline_m()}};
+    *text += StrFormat("  %-16s %d x %d px, f %.3f px, baseline %.4f m  (%s)\n", "calibration",
+                       rig.width(), rig.height(), rig.focal_px(), rig.baseline_m(),
+                       d.calibration.c_str());
+  } else {
+    *text += StrFormat("  %-16s none given\n", "calibration");
+  }
+  AAVIO_RETURN_IF_ERROR(DescribeEvents("left", d.left, options, j, text));
+  AAVIO_RETURN_IF_ERROR(DescribeEvents("right", d.right, options, j, text));
+  if (d.imu) {
+    AAVIO_RETURN_IF_ERROR(DescribeImu(*d.imu, options, j, text));
+  } else {
+    *text += StrFormat("  %-16s none\n", "imu");
+  }
+  if (d.gt_trajectory) {
+    Expected<std::vector<geometry::StampedPose>> poses =
+        d.gt_trajectory->format == io::SourceFormat::kBag
+            ? io::ReadBagPoses(d.gt_trajectory->path, d.gt_trajectory->topic)
+            : io::ReadTumTrajectory(d.gt_trajectory->path);
+    if (!poses) return poses.status();
+    (*j)["ground_truth"] = {{"poses", poses->size()}, {"path", d.gt_trajectory->path}};
+    *text += StrFormat("  %-16s %zu poses (%s)\n", "ground truth", poses->size(),
+                       d.gt_trajectory->path.c_str());
+  }
+  if (!d.gt_depth.empty()) {
+    (*j)["ground_truth_depth"] = d.gt_depth;
+    *text += StrFormat("  %-16s %s\n", "gt depth", d.gt_depth.c_str());
+  }
+  return Status::Ok();
+}
+
+}  // namespace
+
+bool LooksLikeData(const std::string& path) {
+  std::error_code ec;
+  const fs::path p(path);
+  if (fs::is_directory(p, ec)) {
+    return fs::is_regular_file(p / "sequence.yaml", ec) ||
+           fs::is_regular_file(p / "events" / "left" / "events.h5", ec);
+  }
+  const std::string ext = p.extension().string();
+  if (ext == ".h5" || ext == ".hdf5" || ext == ".bag" || ext == ".txt") return true;
+  return p.filename() == "sequence.yaml";
+}
+
+Status DescribeData(const std::string& path, nlohmann::json* j, std::string* text) {
+  (*j)["path"] = path;
+  const fs::path p(path);
+  const std::string ext = p.extension().string();
+  if (ext == ".bag") return DescribeBag(path, j, text);
+  if (ext == ".h5" || ext == ".hdf5") {
+    if (Expected<cv::Mat> map = io::ReadDsecRectifyMap(path); map.ok()) {
+      (*j)["kind"] = "rectify_map";
+      (*j)["resolution"] = {map->cols, map->rows};
+      *text += StrFormat("rectify_map  %s\n  %d x %d raw pixels -> rectified (x, y)\n",
+                         path.c_str(), map->cols, map->rows);
+      return Status::Ok();
+    }
+    (*j)["kind"] = "events";
+    *text += "events  " + path + "\n";
+    return DescribeEvents("events", {io::SourceFormat::kDsecH5, path, "", {}}, {}, j, text);
+  }
+  if (ext == ".txt") {
+    (*j)["kind"] = "events";
+    *text += "events  " + path + "\n";
+    return DescribeEvents("events", {io::SourceFormat::kText, path, "", {}}, {}, j, text);
+  }
+  Expected<io::SequenceDescription> d = io::DescribeSequence(path);
+  if (!d) return d.status();
+  return DescribeSequenceData(*d, j, text);
+}
+
+}  // namespace aavio::cli
