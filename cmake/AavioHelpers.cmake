@@ -1,12 +1,15 @@
 # aavio_add_library(NAME SOURCES ... [PUBLIC_DEPS ...] [PRIVATE_DEPS ...])
 #   One static library per module folder, target aavio_<NAME>, alias aavio::<NAME>.
-# aavio_add_test(NAME SOURCES ... DEPS ... [LABELS ...])
+# aavio_add_test(NAME SOURCES ... DEPS ... [LABELS ...] [FIXTURES name])
 #   One GoogleTest executable per module; every TEST becomes a CTest test.
 
 function(aavio_set_warnings target)
   target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor
                          -Wcast-align -Wunused -Woverloaded-virtual -Wnull-dereference
                          -Wdouble-promotion -Wformat=2 -Wimplicit-fallthrough -Werror=return-type)
+  # Config structs have in-class defaults and are filled with designated initializers
+  # ({.width = 640}); the omitted fields keep their defaults on purpose.
+  target_compile_options(${target} PRIVATE -Wno-missing-field-initializers)
   # GCC 12 warns falsely on `"literal" + std::string&&` at -O2 (GCC bug 105651).
   if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU" AND CMAKE_CXX_COMPILER_VERSION VERSION_LESS 13)
     target_compile_options(${target} PRIVATE -Wno-restrict)
@@ -35,7 +38,7 @@ function(aavio_add_test name)
   if(NOT AAVIO_BUILD_TESTS)
     return()
   endif()
-  cmake_parse_arguments(ARG "" "" "SOURCES;DEPS;LABELS" ${ARGN})
+  cmake_parse_arguments(ARG "" "FIXTURES" "SOURCES;DEPS;LABELS" ${ARGN})
   if(NOT ARG_LABELS)
     set(ARG_LABELS unit)
   endif()
@@ -45,5 +48,9 @@ function(aavio_add_test name)
     AAVIO_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
     AAVIO_TEST_TMP_DIR="${CMAKE_BINARY_DIR}/test_tmp")
   aavio_set_warnings(${name})
-  gtest_discover_tests(${name} PROPERTIES LABELS "${ARG_LABELS}" DISCOVERY_TIMEOUT 60)
+  set(properties LABELS "${ARG_LABELS}")
+  if(ARG_FIXTURES)
+    list(APPEND properties FIXTURES_REQUIRED ${ARG_FIXTURES})
+  endif()
+  gtest_discover_tests(${name} PROPERTIES ${properties} DISCOVERY_TIMEOUT 60)
 endfunction()

@@ -5,8 +5,8 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <limits>
 #include <cstring>
+#include <limits>
 #include <vector>
 
 #include "aavio/io/rosbag_messages.hpp"
@@ -25,7 +25,9 @@ void PutBytes(std::vector<std::uint8_t>* out, const void* data, std::size_t n) {
   if (n > 0) std::memcpy(out->data() + at, data, n);
 }
 
-void PutU32(std::vector<std::uint8_t>* out, std::uint32_t v) { PutBytes(out, &v, 4); }
+void PutU32(std::vector<std::uint8_t>* out, std::uint32_t v) {
+  PutBytes(out, &v, 4);
+}
 
 /// Builds a record header from name=value fields.
 class FieldList {
@@ -45,7 +47,9 @@ class FieldList {
                                 static_cast<std::uint32_t>(t % kNsPerS)};
     return Add(name, v, 8);
   }
-  FieldList& Str(const std::string& name, const std::string& s) { return Add(name, s.data(), s.size()); }
+  FieldList& Str(const std::string& name, const std::string& s) {
+    return Add(name, s.data(), s.size());
+  }
   const std::vector<std::uint8_t>& bytes() const { return bytes_; }
 
  private:
@@ -124,7 +128,9 @@ struct BagWriter::State {
   }
   static std::vector<std::uint8_t> ConnectionData(const ConnectionInfo& c) {
     FieldList d;
-    d.Str("topic", c.topic).Str("type", c.type->name).Str("md5sum", c.type->md5sum)
+    d.Str("topic", c.topic)
+        .Str("type", c.type->name)
+        .Str("md5sum", c.type->md5sum)
         .Str("message_definition", c.type->definition);
     return d.bytes();
   }
@@ -150,9 +156,15 @@ struct BagWriter::State {
     std::span<const std::uint8_t> payload = chunk;
     if (options.compression == BagCompression::kLz4) {
       name = "lz4";
-      compressed.resize(LZ4F_compressFrameBound(chunk.size(), nullptr));
-      const std::size_t n =
-          LZ4F_compressFrame(compressed.data(), compressed.size(), chunk.data(), chunk.size(), nullptr);
+      // The frame settings ROS's own roslz4 writes (and requires to read): independent 1 MB
+      // blocks and a content checksum.
+      LZ4F_preferences_t prefs{};
+      prefs.frameInfo.blockSizeID = LZ4F_max1MB;
+      prefs.frameInfo.blockMode = LZ4F_blockIndependent;
+      prefs.frameInfo.contentChecksumFlag = LZ4F_contentChecksumEnabled;
+      compressed.resize(LZ4F_compressFrameBound(chunk.size(), &prefs));
+      const std::size_t n = LZ4F_compressFrame(compressed.data(), compressed.size(), chunk.data(),
+                                               chunk.size(), &prefs);
       if (LZ4F_isError(n)) return IoError(path + ": lz4 compression failed");
       compressed.resize(n);
       payload = compressed;
@@ -183,7 +195,10 @@ struct BagWriter::State {
         PutU32(&data, offset);
       }
       FieldList ih;
-      ih.Op(kOpIndex).U32("ver", 1).U32("conn", id).U32("count", static_cast<std::uint32_t>(entries.size()));
+      ih.Op(kOpIndex)
+          .U32("ver", 1)
+          .U32("conn", id)
+          .U32("count", static_cast<std::uint32_t>(entries.size()));
       AppendRecord(&out, ih, data);
       info.counts[id] = static_cast<std::uint32_t>(entries.size());
     }
@@ -197,7 +212,8 @@ struct BagWriter::State {
   Status EmitPacket(const std::string& topic, PendingPacket* packet) {
     const ConnectionInfo& c = Connection(topic, rosbag::kEventArray);
     const TimeNs stamp = (packet->index + 1) * options.event_packet_ns;
-    rosbag::EncodeEventArray(stamp, connections.at(topic).seq++, "", static_cast<std::uint32_t>(options.width),
+    rosbag::EncodeEventArray(stamp, connections.at(topic).seq++, "",
+                             static_cast<std::uint32_t>(options.width),
                              static_cast<std::uint32_t>(options.height), packet->events, &message);
     packet->events.clear();
     packet->open = false;
@@ -206,7 +222,8 @@ struct BagWriter::State {
 
   std::vector<std::uint8_t> BagHeader(std::uint64_t index_pos) const {
     FieldList h;
-    h.Op(kOpBagHeader).U64("index_pos", index_pos)
+    h.Op(kOpBagHeader)
+        .U64("index_pos", index_pos)
         .U32("conn_count", static_cast<std::uint32_t>(connections.size()))
         .U32("chunk_count", static_cast<std::uint32_t>(chunk_infos.size()));
     const std::size_t used = 4 + h.bytes().size() + 4;
@@ -224,7 +241,7 @@ BagWriter::~BagWriter() {
 }
 
 Expected<std::unique_ptr<BagWriter>> BagWriter::Create(const std::string& path,
-                                                      const BagWriterOptions& options) {
+                                                       const BagWriterOptions& options) {
   if (options.event_packet_ns <= 0 || options.chunk_bytes == 0) {
     return InvalidArgument(path + ": event_packet_ns and chunk_bytes must be positive");
   }
@@ -250,7 +267,8 @@ Status BagWriter::WriteEvents(const std::string& topic, std::span<const events::
                              " must be written in time order (event at " + FormatSecondsNs(e.t_ns) +
                              " s after one at " + FormatSecondsNs(packet.last_t_ns) + " s)");
     }
-    if (e.t_ns < 0) return InvalidArgument(s.path + ": negative timestamps cannot be stored in a bag");
+    if (e.t_ns < 0)
+      return InvalidArgument(s.path + ": negative timestamps cannot be stored in a bag");
     const std::int64_t index = e.t_ns / s.options.event_packet_ns;
     if (packet.open && index != packet.index) AAVIO_RETURN_IF_ERROR(s.EmitPacket(topic, &packet));
     packet.open = true;
@@ -298,8 +316,12 @@ Status BagWriter::Close() {
         PutU32(&data, count);
       }
       FieldList h;
-      h.Op(kOpChunkInfo).U32("ver", 1).U64("chunk_pos", info.position).Time("start_time", info.start)
-          .Time("end_time", info.end).U32("count", static_cast<std::uint32_t>(info.counts.size()));
+      h.Op(kOpChunkInfo)
+          .U32("ver", 1)
+          .U64("chunk_pos", info.position)
+          .Time("start_time", info.start)
+          .Time("end_time", info.end)
+          .U32("count", static_cast<std::uint32_t>(info.counts.size()));
       AppendRecord(&index, h, data);
     }
     AAVIO_RETURN_IF_ERROR(s.WriteBytes(index));

@@ -1,0 +1,134 @@
+#include "aavio/io/sequence.hpp"
+
+#include <gtest/gtest.h>
+
+#include "tests/event_fixtures.hpp"
+#include "tests/fixtures/calibrations.hpp"
+#include "tests/test_utils.hpp"
+
+namespace aavio::io {
+namespace {
+
+using testing::Fixture;
+
+TEST(Sequence, ReadsASequenceYamlWithRelativePaths) {
+  const auto dir = testing::ScratchDir();
+  testing::WriteFile(dir / "calib" / "left.yaml", testing::kRpgLeftYaml);
+  testing::WriteFile(dir / "calib" / "right.yaml", testing::kRpgRightYaml);
+  std::filesystem::create_directories(dir / "data");
+  std::filesystem::copy_file(Fixture("bag_lz4.bag"), dir / "data" / "recording.bag");
+  const std::string yaml = testing::WriteFile(dir / "sequence.yaml",
+                                              "name: box\n"
+                                              "calibration: calib\n"
+                                              "events:\n"
+                                              "  left: data/recording.bag\n"
+                                              "  right: data/recording.bag\n"
+                                              "imu:\n"
+                                              "  path: data/recording.bag\n"
+                                              "ground_truth:\n"
+                                              "  trajectory: data/recording.bag\n"
+                                              "  topic: /gt/pose\n");
+  Expected<SequenceDescription> d = DescribeSequence(dir.string());
+  ASSERT_TRUE(d.ok()) << d.status().message();
+  EXPECT_EQ(d->name, "box");
+  EXPECT_EQ(d->calibration, (dir / "calib").string());
+  EXPECT_EQ(d->left.format, SourceFormat::kBag);
+  EXPECT_EQ(d->left.topic, "/davis/left/events");
+  EXPECT_EQ(d->right.topic, "/davis/right/events");
+  ASSERT_TRUE(d->imu.has_value());
+  EXPECT_EQ(d->gt_trajectory->topic, "/gt/pose");
+
+  // Packets cover the data without gaps or overlaps, and hold every element once.
+  Expected<std::unique_ptr<SequenceReader>> reader = SequenceReader::Open(
+      *d, {.packet_ns = 3 * kNsPerMs, .stream = {.width = 240, .height = 180}});
+  ASSERT_TRUE(reader.ok()) << reader.status().message();
+  SensorPacket packet;
+  std::size_t left = 0, right = 0, imu = 0;
+  TimeNs previous_end = (*reader)->start_ns();
+  while (true) {
+    Expected<bool> more = (*reader)->Next(&packet);
+    ASSERT_TRUE(more.ok()) << more.status().message();
+    if (!*more) break;
+    EXPECT_EQ(packet.t_begin_ns, previous_end);
+    previous_end = packet.t_end_ns;
+    for (const events::Event& e : packet.left) {
+      EXPECT_GE(e.t_ns, packet.t_begin_ns);
+      EXPECT_LT(e.t_ns, packet.t_end_ns);
+    }
+    left += packet.left.size();
+    right += packet.right.size();
+    imu += packet.imu.size();
+  }
+  EXPECT_EQ(left, testing::ExpectedEvents("bag_lz4.left").size());
+  EXPECT_EQ(right, testing::ExpectedEvents("bag_lz4.right").size());
+  EXPECT_EQ(imu, testing::ExpectedImu("bag_lz4").size());
+}
+
+TEST(Sequence, WrittenDescriptionReadsBack) {
+  const auto dir = testing::ScratchDir();
+  SequenceDescription d;
+  d.name = "twin";
+  d.calibration = (dir / "calibration").string();
+  d.left = {SourceFormat::kDsecH5, (dir / "events" / "left" / "events.h5").string(), "", {}};
+  d.right = {SourceFormat::kDsecH5, (dir / "events" / "right" / "events.h5").string(), "", {}};
+  d.imu = SourceSpec{SourceFormat::kText, (dir / "imu.txt").string(), "", ImuTextLayout::kEcd};
+  d.gt_trajectory = SourceSpec{SourceFormat::kText, (dir / "groundtruth.txt").string(), "", {}};
+  d.gt_depth = (dir / "depth").string();
+  ASSERT_TRUE(WriteSequenceYaml((dir / "sequence.yaml").string(), d).ok());
+  const std::string text = testing::ReadBytes((dir / "sequence.yaml").string()).data();
+  EXPECT_NE(text.find("left: events/left/events.h5"), std::string::npos) << text;  // relative
+  Expected<SequenceDescription> back = ReadSequenceYaml((dir / "sequence.yaml").string());
+  ASSERT_TRUE(back.ok()) << back.status().message();
+  EXPECT_EQ(back->left.path, d.left.path);
+  EXPECT_EQ(back->calibration, d.calibration);
+  EXPECT_EQ(back->imu->path, d.imu->path);
+  EXPECT_EQ(back->gt_trajectory->path, d.gt_trajectory->path);
+  EXPECT_EQ(back->gt_depth, d.gt_depth);
+}
+
+TEST(Sequence, DsecFolderAndBagAreRecognised) {
+  const auto dir = testing::ScratchDir();
+  std::filesystem::create_directories(dir / "events" / "left");
+  std::filesystem::create_directories(dir / "events" / "right");
+  std::filesystem::copy_file(Fixture("dsec_blosc.h5"), dir / "events" / "left" / "events.h5");
+  std::filesystem::copy_file(Fixture("dsec_blosc.h5"), dir / "events" / "right" / "events.h5");
+  Expected<SequenceDescription> d = DescribeSequence(dir.string());
+  ASSERT_TRUE(d.ok()) << d.status().message();
+  EXPECT_EQ(d->left.format, SourceFormat::kDsecH5);
+  EXPECT_FALSE(d->imu.has_value());
+  Expected<SequenceDescription> bag = DescribeSequence(Fixture("bag_none.bag"), "/some/calib");
+  ASSERT_TRUE(bag.ok()) << bag.status().message();
+  EXPECT_EQ(bag->calibration, "/some/calib");
+  EXPECT_TRUE(bag->imu.has_value());
+  EXPECT_TRUE(bag->gt_trajectory.has_value());
+}
+
+TEST(Sequence, BadDescriptionsGiveClearErrors) {
+  struct Case {
+    const char* yaml;
+    const char* expected;
+  };
+  const std::vector<Case> cases = {
+      {"calibration: c\n", "missing key 'events'"},
+      {"events:\n  left: a.h5\n", "missing key 'events.right'"},
+      {"events:\n  left: a.h5\n  rigth: b.h5\n",
+       "unknown key 'events.rigth'; did you mean 'events.right'?"},
+      {"events:\n  left: a.csv\n  right: b.h5\n", "unknown data format '.csv'"},
+      {"evnts:\n  left: a.h5\n", "unknown key 'evnts'; did you mean 'events'?"},
+      {"events:\n  left: a.h5\n  right: b.h5\nimu:\n  path: imu.txt\n  layout: csv\n",
+       "imu.layout 'csv' must be ecd or tum_vie"},
+  };
+  for (const Case& c : cases) {
+    const auto dir = testing::ScratchDir();
+    const std::string path = testing::WriteFile(dir / "sequence.yaml", c.yaml);
+    Expected<SequenceDescription> d = ReadSequenceYaml(path);
+    ASSERT_FALSE(d.ok()) << c.yaml;
+    EXPECT_NE(d.status().message().find(c.expected), std::string::npos) << d.status().message();
+  }
+  EXPECT_NE(
+      DescribeSequence(testing::ScratchDir().string()).status().message().find("no sequence here"),
+      std::string::npos);
+}
+
+}  // namespace
+}  // namespace aavio::io
