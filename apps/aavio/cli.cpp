@@ -21,6 +21,7 @@ int RunCli(const std::vector<std::string>& args, std::ostream& out, std::ostream
   Context ctx{out, err, {}};
   RegisterInfo(app, ctx);
   RegisterConfig(app, ctx);
+  RegisterConvert(app, ctx);
   RegisterPlanned(app, ctx);
 
   std::vector<std::string> reversed(args.rbegin(), args.rend() - (args.empty() ? 0 : 1));

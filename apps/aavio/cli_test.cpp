@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "tests/event_fixtures.hpp"
 #include "tests/fixtures/calibrations.hpp"
 #include "tests/test_utils.hpp"
 
@@ -91,6 +92,53 @@ TEST(Cli, InfoReportsBadInputWithoutCrashing) {
   r = RunAavio({"info", dir.string()});
   EXPECT_EQ(r.code, kExitError);
   EXPECT_NE(r.err.find("YAML syntax error"), std::string::npos);
+}
+
+TEST(Cli, InfoDescribesDataFiles) {
+  Result r = RunAavio({"info", testing::Fixture("dsec_blosc.h5")});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  EXPECT_NE(r.out.find("200000 events, 36470.123457000 .. 36470.373456000 s"), std::string::npos)
+      << r.out;
+  r = RunAavio({"info", testing::Fixture("bag_lz4.bag"), "--json"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["kind"], "bag");
+  EXPECT_EQ(j["/davis/left/events"]["events"], 20000);
+  EXPECT_EQ(j["/davis/right/events"]["events"], 15000);
+  EXPECT_EQ(j["/davis/left/events"]["resolution"], nlohmann::json({240, 180}));
+  EXPECT_NEAR(j["imu"]["rate_hz"].get<double>(), 1000.0, 1e-6);
+  EXPECT_EQ(j["topics"]["/gt/pose"]["type"], "geometry_msgs/PoseStamped");
+  r = RunAavio({"info", testing::Fixture("backwards.h5")});
+  EXPECT_EQ(r.code, kExitError);
+  EXPECT_NE(r.err.find("goes back 30.000 ms"), std::string::npos) << r.err;
+}
+
+TEST(Cli, ConvertRoundTripsThroughEveryFormat) {
+  const auto dir = testing::ScratchDir();
+  testing::WriteFile(dir / "calib" / "left.yaml", testing::kRpgLeftYaml);
+  testing::WriteFile(dir / "calib" / "right.yaml", testing::kRpgRightYaml);
+  std::string from = testing::Fixture("bag_bz2.bag");
+  std::vector<std::string> extra = {"--calib", (dir / "calib").string()};
+  for (const char* format : {"h5", "txt", "bag"}) {
+    const std::string out = (dir / format).string();
+    std::vector<std::string> args = {"convert", from, "--to", format, "--out", out};
+    args.insert(args.end(), extra.begin(), extra.end());
+    Result r = RunAavio(args);
+    ASSERT_EQ(r.code, kExitOk) << format << ": " << r.err;
+    EXPECT_NE(r.out.find("converted 20000 left + 15000 right events and 200 IMU samples"),
+              std::string::npos)
+        << r.out;
+    r = RunAavio({"info", out, "--json"});
+    ASSERT_EQ(r.code, kExitOk) << format << ": " << r.err;
+    const nlohmann::json j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["left"]["events"], 20000) << format;
+    EXPECT_EQ(j["right"]["events"], 15000) << format;
+    EXPECT_EQ(j["ground_truth"]["poses"], 20) << format;
+    // Timestamps survive every hop (h5 stores µs: the fixture's ns are rounded once).
+    EXPECT_EQ(j["left"]["t_first_s"], "36470.123466000") << format;
+    from = out;  // the next hop starts from this one's sequence.yaml
+    extra.clear();
+  }
 }
 
 TEST(Cli, ConfigPrintsListsAndWritesTheEffectiveConfig) {
