@@ -112,6 +112,10 @@ TEST(EsvoCalibration, RefusesMalformedFilesWithPreciseMessages) {
                "0.00632456886338, 0.00935904469797, -0.99993620202, 0]"),
        R, "left.yaml: T_b_c rotation is a reflection"},
       {L, Replace(R, "image_width: 240", "image_width: 320"), "image sizes differ"},
+      // ESVO v1's DSEC file: a value of T_right_left's third row duplicated (not a rotation).
+      {Replace(L, "-0.010059803423311134, 0.0010362522169301642",
+               "-0.010059803423311134, -0.010059803423311134"),
+       R, "T_right_left rotation is not a rotation"},
       {"image_width: [240\n", R, "left.yaml:2:1: YAML syntax error"},
       {"", R, "left.yaml: file is empty"},
       {"- just\n- a list\n", R, "expected a mapping of keys at the top level"},

@@ -90,6 +90,18 @@ TEST(TextStreams, MalformedLinesNameFileAndLine) {
   EXPECT_EQ(TextEventStream::Open("/nonexistent.txt", {}).status().code(), StatusCode::kNotFound);
 }
 
+TEST(TextStreams, EmptyFilesAreEmptyStreams) {
+  for (const char* text : {"", "# only a header\n"}) {
+    const std::string path = testing::WriteFile(testing::ScratchDir() / "events.txt", text);
+    auto stream = TextEventStream::Open(path, {});
+    ASSERT_TRUE(stream.ok()) << stream.status().message();
+    std::vector<events::Event> out;
+    ASSERT_TRUE((*stream)->ReadUntil(kNsPerS, &out).ok());
+    EXPECT_TRUE(out.empty());
+    EXPECT_TRUE((*stream)->AtEnd());
+  }
+}
+
 TEST(TextStreams, WritersRoundTrip) {
   const std::vector<events::Event> expected = testing::ExpectedEvents("events_txt");
   const auto dir = testing::ScratchDir();
