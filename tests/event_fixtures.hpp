@@ -8,12 +8,14 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "aavio/events/event.hpp"
 #include "aavio/geometry/pose_buffer.hpp"
 #include "aavio/imu/imu_sample.hpp"
+#include "aavio/io/streams.hpp"
 
 namespace aavio::testing {
 
@@ -86,6 +88,22 @@ inline std::vector<geometry::StampedPose> ExpectedPoses(const std::string& name)
     out[i].T_world_body = {
         Eigen::Quaterniond(v[6], v[3], v[4], v[5]).normalized().toRotationMatrix(),
         Eigen::Vector3d(v[0], v[1], v[2])};
+  }
+  return out;
+}
+
+/// Reads a stream to its end in packets of `packet_ns` from `start_ns` (default: its first
+/// stamp minus one), failing the test on any error.
+template <typename T>
+std::vector<T> ReadAllOf(io::Stream<T>& stream, TimeNs packet_ns,
+                         std::optional<TimeNs> start_ns = {}) {
+  std::vector<T> out;
+  TimeNs t = start_ns ? *start_ns : stream.info().t_first_ns - 1;
+  while (!stream.AtEnd()) {
+    t += packet_ns;
+    Status s = stream.ReadUntil(t, &out);
+    EXPECT_TRUE(s.ok()) << s.message();
+    if (!s.ok()) break;
   }
   return out;
 }

@@ -13,19 +13,6 @@ namespace {
 using testing::ExpectedEvents;
 using testing::Fixture;
 
-template <typename T>
-std::vector<T> ReadAll(Stream<T>& stream, TimeNs packet_ns) {
-  std::vector<T> out;
-  TimeNs t = stream.info().t_first_ns;
-  while (!stream.AtEnd()) {
-    t += packet_ns;
-    Status s = stream.ReadUntil(t, &out);
-    EXPECT_TRUE(s.ok()) << s.message();
-    if (!s.ok()) break;
-  }
-  return out;
-}
-
 class BagVariants : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(BagVariants, EventsOfBothTopicsInEventTime) {
@@ -39,7 +26,7 @@ TEST_P(BagVariants, EventsOfBothTopicsInEventTime) {
     EXPECT_EQ((*stream)->info().t_last_ns, expected.back().t_ns);
     EXPECT_EQ((*stream)->info().width, 240);
     EXPECT_EQ((*stream)->info().height, 180);
-    const std::vector<events::Event> got = ReadAll(**stream, kNsPerMs);
+    const std::vector<events::Event> got = testing::ReadAllOf(**stream, kNsPerMs);
     ASSERT_EQ(got.size(), expected.size()) << name << " " << side;
     EXPECT_TRUE(got == expected) << name << " " << side;
   }
@@ -50,7 +37,7 @@ TEST_P(BagVariants, ImuFoundByTypeAndPoses) {
   auto imu = BagImuStream::Open(Fixture(name + ".bag"), "", {});
   ASSERT_TRUE(imu.ok()) << imu.status().message();
   const std::vector<imu::ImuSample> expected = testing::ExpectedImu(name);
-  const std::vector<imu::ImuSample> got = ReadAll(**imu, 7 * kNsPerMs);
+  const std::vector<imu::ImuSample> got = testing::ReadAllOf(**imu, 7 * kNsPerMs);
   ASSERT_EQ(got.size(), expected.size());
   for (std::size_t i = 0; i < got.size(); ++i) {
     EXPECT_EQ(got[i].t_ns, expected[i].t_ns);
@@ -177,11 +164,11 @@ TEST_P(BagWriterTest, RoundTripsAndRosbagAgrees) {
        {std::pair{"/davis/left/events", &left}, std::pair{"/davis/right/events", &right}}) {
     auto stream = BagEventStream::Open(path, topic, {});
     ASSERT_TRUE(stream.ok()) << stream.status().message();
-    EXPECT_TRUE(ReadAll(**stream, kNsPerMs) == *expected) << topic;
+    EXPECT_TRUE(testing::ReadAllOf(**stream, kNsPerMs) == *expected) << topic;
   }
   auto imu_stream = BagImuStream::Open(path, "", {});
   ASSERT_TRUE(imu_stream.ok());
-  EXPECT_EQ(ReadAll(**imu_stream, kNsPerMs).size(), imu.size());
+  EXPECT_EQ(testing::ReadAllOf(**imu_stream, kNsPerMs).size(), imu.size());
   // python3-rosbag (independent reader): index, chunk infos, 1 ms packets, values.
   const std::string command = "/usr/bin/python3 " AAVIO_SOURCE_DIR "/tests/fixtures/check_bag.py " +
                               path + " " + testing::EventFixtureDir() + "/bag_lz4";

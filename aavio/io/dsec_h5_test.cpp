@@ -15,18 +15,6 @@ namespace {
 using testing::ExpectedEvents;
 using testing::Fixture;
 
-std::vector<events::Event> ReadAll(EventStream& stream, TimeNs packet_ns, TimeNs start_ns) {
-  std::vector<events::Event> out;
-  TimeNs t = start_ns;
-  while (!stream.AtEnd()) {
-    t += packet_ns;
-    Status s = stream.ReadUntil(t, &out);
-    EXPECT_TRUE(s.ok()) << s.message();
-    if (!s.ok()) break;
-  }
-  return out;
-}
-
 std::unique_ptr<DsecH5EventStream> OpenOk(const std::string& name, StreamOptions options = {}) {
   auto stream = DsecH5EventStream::Open(Fixture(name + ".h5"), options);
   EXPECT_TRUE(stream.ok()) << stream.status().message();
@@ -46,7 +34,7 @@ TEST_P(DsecH5Variants, ReadsExactlyWhatH5pyWrote) {
   EXPECT_EQ(stream->info().count, static_cast<std::int64_t>(expected.size()));
   EXPECT_EQ(stream->info().t_first_ns, expected.front().t_ns);
   EXPECT_EQ(stream->info().t_last_ns, expected.back().t_ns);
-  const std::vector<events::Event> got = ReadAll(*stream, kNsPerMs, expected.front().t_ns - 1);
+  const std::vector<events::Event> got = testing::ReadAllOf(*stream, kNsPerMs);
   ASSERT_EQ(got.size(), expected.size());
   EXPECT_TRUE(got == expected);
 }
@@ -189,7 +177,7 @@ TEST(DsecH5Writer, RoundTripsAndH5pyAgrees) {
   auto stream = DsecH5EventStream::Open(path, {});
   ASSERT_TRUE(stream.ok()) << stream.status().message();
   EXPECT_EQ((*stream)->t_offset_us(), 36470123000LL);  // first event, down to the millisecond
-  const std::vector<events::Event> got = ReadAll(**stream, 3 * kNsPerMs, expected.front().t_ns - 1);
+  const std::vector<events::Event> got = testing::ReadAllOf(**stream, 3 * kNsPerMs);
   EXPECT_TRUE(got == expected);
   // h5py (independent reader) checks the layout, blosc options, ms_to_idx and the values.
   const std::string command = "/usr/bin/python3 " AAVIO_SOURCE_DIR

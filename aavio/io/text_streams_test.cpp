@@ -10,26 +10,13 @@ namespace {
 
 using testing::Fixture;
 
-template <typename T>
-std::vector<T> ReadAll(Stream<T>& stream, TimeNs packet_ns) {
-  std::vector<T> out;
-  TimeNs t = stream.info().t_first_ns;
-  while (!stream.AtEnd()) {
-    t += packet_ns;
-    Status s = stream.ReadUntil(t, &out);
-    EXPECT_TRUE(s.ok()) << s.message();
-    if (!s.ok()) break;
-  }
-  return out;
-}
-
 TEST(TextStreams, ReadsEventsAsWritten) {
   const std::vector<events::Event> expected = testing::ExpectedEvents("events_txt");
   auto stream = TextEventStream::Open(Fixture("events.txt"), {.width = 240, .height = 180});
   ASSERT_TRUE(stream.ok()) << stream.status().message();
   EXPECT_EQ((*stream)->info().t_first_ns, expected.front().t_ns);
   EXPECT_EQ((*stream)->info().t_last_ns, expected.back().t_ns);
-  EXPECT_TRUE(ReadAll(**stream, 2 * kNsPerMs) == expected);
+  EXPECT_TRUE(testing::ReadAllOf(**stream, 2 * kNsPerMs) == expected);
   // Seeking re-reads from the start.
   ASSERT_TRUE((*stream)->Seek(expected[2500].t_ns).ok());
   std::vector<events::Event> out;
@@ -42,7 +29,7 @@ TEST(TextStreams, ReadsEcdImu) {
   const std::vector<imu::ImuSample> expected = testing::ExpectedImu("imu_txt");
   auto stream = TextImuStream::Open(Fixture("imu.txt"), ImuTextLayout::kEcd, {});
   ASSERT_TRUE(stream.ok()) << stream.status().message();
-  const std::vector<imu::ImuSample> got = ReadAll(**stream, 10 * kNsPerMs);
+  const std::vector<imu::ImuSample> got = testing::ReadAllOf(**stream, 10 * kNsPerMs);
   ASSERT_EQ(got.size(), expected.size());
   for (std::size_t i = 0; i < got.size(); ++i) {
     EXPECT_EQ(got[i].t_ns, expected[i].t_ns);
@@ -58,7 +45,7 @@ TEST(TextStreams, ReadsTumVieImuLayout) {
                                               "6000 0.1 0.2 0.3 1 2 9.8 25.5\n");
   auto stream = TextImuStream::Open(path, ImuTextLayout::kTumVie, {});
   ASSERT_TRUE(stream.ok());
-  const std::vector<imu::ImuSample> got = ReadAll(**stream, kNsPerMs);
+  const std::vector<imu::ImuSample> got = testing::ReadAllOf(**stream, kNsPerMs);
   ASSERT_EQ(got.size(), 2u);
   EXPECT_EQ(got[1].t_ns, 6 * kNsPerMs);
   EXPECT_DOUBLE_EQ(got[0].gyro_rad_s.z(), 0.3);
@@ -113,13 +100,13 @@ TEST(TextStreams, WritersRoundTrip) {
   }
   auto stream = TextEventStream::Open((dir / "events.txt").string(), {});
   ASSERT_TRUE(stream.ok());
-  EXPECT_TRUE(ReadAll(**stream, kNsPerMs) == expected);
+  EXPECT_TRUE(testing::ReadAllOf(**stream, kNsPerMs) == expected);
 
   const std::vector<imu::ImuSample> imu = testing::ExpectedImu("imu_txt");
   ASSERT_TRUE(WriteImuText((dir / "imu.txt").string(), imu).ok());
   auto imu_stream = TextImuStream::Open((dir / "imu.txt").string(), ImuTextLayout::kEcd, {});
   ASSERT_TRUE(imu_stream.ok());
-  const std::vector<imu::ImuSample> back = ReadAll(**imu_stream, kNsPerMs);
+  const std::vector<imu::ImuSample> back = testing::ReadAllOf(**imu_stream, kNsPerMs);
   ASSERT_EQ(back.size(), imu.size());
   EXPECT_LT((back[7].gyro_rad_s - imu[7].gyro_rad_s).norm(), 1e-8);
 }
