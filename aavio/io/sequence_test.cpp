@@ -75,7 +75,8 @@ TEST(Sequence, WrittenDescriptionReadsBack) {
   d.gt_trajectory = SourceSpec{SourceFormat::kText, (dir / "groundtruth.txt").string(), "", {}};
   d.gt_depth = (dir / "depth").string();
   ASSERT_TRUE(WriteSequenceYaml((dir / "sequence.yaml").string(), d).ok());
-  const std::string text = testing::ReadBytes((dir / "sequence.yaml").string()).data();
+  const std::vector<char> bytes = testing::ReadBytes((dir / "sequence.yaml").string());
+  const std::string text(bytes.begin(), bytes.end());
   EXPECT_NE(text.find("left: events/left/events.h5"), std::string::npos) << text;  // relative
   Expected<SequenceDescription> back = ReadSequenceYaml((dir / "sequence.yaml").string());
   ASSERT_TRUE(back.ok()) << back.status().message();
