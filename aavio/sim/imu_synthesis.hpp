@@ -1,0 +1,40 @@
+#pragma once
+/// IMU readings from a motion spline (issue 4): gyroscope and accelerometer at the sensor rate,
+/// in the IMU frame through the IMU–camera extrinsic, gravity included, with white noise,
+/// a constant initial bias and a bias random walk (the continuous-time model of Kalibr/Basalt:
+/// discrete white-noise std = density · √rate, random-walk step std = walk density / √rate).
+
+#include <array>
+#include <vector>
+
+#include "aavio/common/status.hpp"
+#include "aavio/imu/imu_sample.hpp"
+#include "aavio/sim/motion_spline.hpp"
+
+namespace aavio::sim {
+
+/// Defaults: a consumer MEMS IMU (the figures ESVO2's back-end uses for DAVIS/DSEC IMUs).
+struct ImuNoiseModel {
+  double rate_hz = 1000.0;
+  double gyro_noise_density = 0.00292;                     ///< rad/s/√Hz
+  double accel_noise_density = 0.04401;                    ///< m/s²/√Hz
+  double gyro_random_walk = 3.216e-5;                      ///< rad/s²/√Hz
+  double accel_random_walk = 7.658e-4;                     ///< m/s³/√Hz
+  std::array<double, 3> gyro_bias{0.002, -0.001, 0.0015};  ///< initial bias [rad/s]
+  std::array<double, 3> accel_bias{0.02, -0.03, 0.01};     ///< initial bias [m/s²]
+
+  /// A perfect IMU (no noise, no bias), for tests and for isolating other errors.
+  static ImuNoiseModel Perfect();
+  Status Validate() const;
+};
+
+/// Samples from t_begin to t_end (inclusive of t_begin, every 1/rate). The spline is the pose of
+/// the body (camera) in the world; T_imu_body places the IMU (p_imu = T_imu_body · p_body);
+/// gravity_world is the gravity vector in the world frame (e.g. (0, 0, −9.81) for z up).
+/// Deterministic for a seed.
+Expected<std::vector<imu::ImuSample>> SynthesizeImu(const MotionSpline& spline,
+                                                    const geometry::RigidTransform& T_imu_body,
+                                                    const Eigen::Vector3d& gravity_world,
+                                                    const ImuNoiseModel& model, std::uint64_t seed);
+
+}  // namespace aavio::sim
