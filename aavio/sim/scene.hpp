@@ -1,0 +1,63 @@
+#pragma once
+/// The simulator's world: textured rectangles ("quads") — walls, floors, facades, box faces —
+/// in a bounding-volume hierarchy for ray casting.
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <vector>
+
+#include "aavio/geometry/rigid_transform.hpp"
+#include "aavio/sim/texture.hpp"
+
+namespace aavio::sim {
+
+/// origin + s·edge_u + t·edge_v for s, t in [0, 1]; the edges are perpendicular. Texture
+/// coordinates are metres along the edges from the origin.
+struct Quad {
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+  Eigen::Vector3d edge_u = Eigen::Vector3d::UnitX();
+  Eigen::Vector3d edge_v = Eigen::Vector3d::UnitY();
+  Texture texture;
+};
+
+struct Hit {
+  double distance = 0.0;  ///< along the (unit) ray [m]
+  std::uint32_t quad = 0;
+  double u_m = 0.0, v_m = 0.0;  ///< texture coordinates
+  double cos_incidence = 1.0;   ///< |cos| of the angle between ray and surface normal
+};
+
+class Scene {
+ public:
+  void AddQuad(const Quad& quad);
+  /// A box of size (x, y, z) [m] centred at T_world_box's origin; `textures` are used in turn
+  /// for its faces; `with_bottom` false leaves out the face at −z (boxes standing on a floor).
+  void AddBox(const geometry::RigidTransform& T_world_box, const Eigen::Vector3d& size,
+              const std::vector<Texture>& textures, bool with_bottom = true);
+  /// Builds the BVH; call after the last Add and before Intersect.
+  void Build();
+
+  /// Nearest hit of the ray o + s·dir (dir of unit length, s > 1e-6); false if none.
+  bool Intersect(const Eigen::Vector3d& o, const Eigen::Vector3d& dir, Hit* hit) const;
+
+  const std::vector<Quad>& quads() const { return quads_; }
+  double sky_albedo = 0.45;  ///< what rays that hit nothing see
+
+ private:
+  struct Node {
+    Eigen::Vector3d lo = Eigen::Vector3d::Zero();
+    Eigen::Vector3d hi = Eigen::Vector3d::Zero();
+    std::uint32_t first = 0, count = 0;  // leaf: quads order_[first, first + count)
+    std::uint32_t left = 0, right = 0;   // inner node (count == 0)
+  };
+  std::uint32_t BuildNode(std::uint32_t first, std::uint32_t count);
+  bool IntersectQuad(std::uint32_t index, const Eigen::Vector3d& o, const Eigen::Vector3d& dir,
+                     Hit* hit) const;
+
+  std::vector<Quad> quads_;
+  std::vector<std::uint32_t> order_;
+  std::vector<Node> nodes_;
+  std::vector<Eigen::Vector3d> lo_, hi_, centre_;  // per-quad bounds
+};
+
+}  // namespace aavio::sim

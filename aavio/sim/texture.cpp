@@ -1,0 +1,112 @@
+#include "aavio/sim/texture.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace aavio::sim {
+
+namespace {
+
+/// A well-mixed 64-bit hash (splitmix64) of a cell and the seed, mapped to [0, 1).
+double Hash01(std::int64_t i, std::int64_t j, std::uint64_t seed) {
+  std::uint64_t x = seed ^ (static_cast<std::uint64_t>(i) * 0x9E3779B97F4A7C15ull) ^
+                    (static_cast<std::uint64_t>(j) * 0xC2B2AE3D27D4EB4Full);
+  x += 0x9E3779B97F4A7C15ull;
+  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
+  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
+  x ^= x >> 31;
+  return static_cast<double>(x >> 11) * (1.0 / 9007199254740992.0);
+}
+
+/// Coverage of "inside" (d > 0) for a step edge at signed distance d, box filter of width w.
+double Coverage(double d, double w) {
+  return std::clamp(0.5 + d / w, 0.0, 1.0);
+}
+
+double Mix(double a, double b, double t) {
+  return a + (b - a) * t;
+}
+
+}  // namespace
+
+double Texture::Albedo(double u_m, double v_m, double footprint_m) const {
+  const double c = std::cos(angle_rad), s = std::sin(angle_rad);
+  const double x = (c * u_m + s * v_m) / cell_m;  // pattern coordinates, in cells
+  const double y = (-s * u_m + c * v_m) / cell_m;
+  const double w = std::max(footprint_m / cell_m, 1e-4);
+  auto albedo = [&](double h) { return std::clamp(mean + contrast * (h - 0.5), 0.05, 1.0); };
+
+  switch (pattern) {
+    case Pattern::kBricks: {
+      // Bricks 2 cells wide, 1 high, rows offset by half a brick; mortar 0.12 cells.
+      const double row = std::floor(y);
+      const double shifted = x / 2.0 + (static_cast<std::int64_t>(row) & 1 ? 0.5 : 0.0);
+      const double col = std::floor(shifted);
+      const double fy = y - row, fx = (shifted - col) * 2.0;
+      const double mortar = 0.06;
+      const double d = std::min({fy - mortar, 1.0 - mortar - fy, fx - mortar, 2.0 - mortar - fx});
+      const double brick =
+          albedo(Hash01(static_cast<std::int64_t>(col), static_cast<std::int64_t>(row), seed));
+      return Mix(albedo(0.1), brick, Coverage(d, w));
+    }
+    case Pattern::kTiles: {
+      const double i = std::floor(x), j = std::floor(y);
+      const double fx = x - i, fy = y - j;
+      // Albedo of this tile, blended towards each neighbour across the edge.
+      const double self =
+          albedo(Hash01(static_cast<std::int64_t>(i), static_cast<std::int64_t>(j), seed));
+      const double left =
+          albedo(Hash01(static_cast<std::int64_t>(i) - 1, static_cast<std::int64_t>(j), seed));
+      const double right =
+          albedo(Hash01(static_cast<std::int64_t>(i) + 1, static_cast<std::int64_t>(j), seed));
+      const double down =
+          albedo(Hash01(static_cast<std::int64_t>(i), static_cast<std::int64_t>(j) - 1, seed));
+      const double up =
+          albedo(Hash01(static_cast<std::int64_t>(i), static_cast<std::int64_t>(j) + 1, seed));
+      double value = self;
+      value = Mix(fx < 0.5 ? left : right, value, Coverage(std::min(fx, 1.0 - fx), w));
+      value = Mix(fy < 0.5 ? down : up, value, Coverage(std::min(fy, 1.0 - fy), w));
+      return value;
+    }
+    case Pattern::kStripes: {
+      const double j = std::floor(y);
+      const double fy = y - j;
+      const double self = albedo(Hash01(0, static_cast<std::int64_t>(j), seed));
+      const double other =
+          albedo(Hash01(0, static_cast<std::int64_t>(j) + (fy < 0.5 ? -1 : 1), seed));
+      return Mix(other, self, Coverage(std::min(fy, 1.0 - fy), w));
+    }
+    case Pattern::kBlobs: {
+      // One disc per cell, jittered centre and radius; the nearest cells are checked.
+      double value = albedo(0.5);
+      const std::int64_t ci = static_cast<std::int64_t>(std::floor(x));
+      const std::int64_t cj = static_cast<std::int64_t>(std::floor(y));
+      for (std::int64_t i = ci - 1; i <= ci + 1; ++i) {
+        for (std::int64_t j = cj - 1; j <= cj + 1; ++j) {
+          const double cx = static_cast<double>(i) + 0.2 + 0.6 * Hash01(i, j, seed + 1);
+          const double cy = static_cast<double>(j) + 0.2 + 0.6 * Hash01(i, j, seed + 2);
+          const double r = 0.15 + 0.3 * Hash01(i, j, seed + 3);
+          const double d = r - std::hypot(x - cx, y - cy);
+          if (d > -w) value = Mix(value, albedo(Hash01(i, j, seed + 4)), Coverage(d, w));
+        }
+      }
+      return value;
+    }
+    case Pattern::kWindows: {
+      // Facade bays of 1.5 × 1 cells: a window (dark or bright) with a light sill below it.
+      const double bx = x / 1.5, by = y;
+      const double i = std::floor(bx), j = std::floor(by);
+      const double fx = (bx - i) * 1.5, fy = by - j;
+      const double wall = albedo(Hash01(0, 0, seed));
+      const double window =
+          albedo(Hash01(static_cast<std::int64_t>(i), static_cast<std::int64_t>(j), seed) * 0.5);
+      const double d_window = std::min({fx - 0.35, 1.15 - fx, fy - 0.3, 0.85 - fy});
+      const double d_sill = std::min({fx - 0.28, 1.22 - fx, fy - 0.22, 0.3 - fy});
+      double value = Mix(wall, albedo(0.95), Coverage(d_sill, w));
+      return Mix(value, window, Coverage(d_window, w));
+    }
+  }
+  return mean;
+}
+
+}  // namespace aavio::sim
