@@ -39,3 +39,13 @@ Expected<LoadedCalibration> LoadDsecCalibration(const std::string& cam_to_cam_ya
 Expected<LoadedCalibration> LoadCalibration(const std::string& path);
 
 }  // namespace aavio::io
+
+namespace aavio::io {
+
+/// Writes `rig` as ESVO/ESVO2 left.yaml + right.yaml into `folder` (created if needed), with
+/// T_right_left and, when the rig has an IMU extrinsic, T_b_c (= T_imu_left). Reading the folder
+/// back with LoadCalibration gives the same rig.
+Status WriteEsvoCalibration(const std::string& folder, const geometry::StereoRig& rig,
+                            const std::string& camera_name = "aavio_sim");
+
+}  // namespace aavio::io

@@ -149,3 +149,30 @@ TEST(Calibration, UnknownPathsAndLayouts) {
 
 }  // namespace
 }  // namespace aavio::io
+
+namespace aavio::io {
+namespace {
+
+TEST(EsvoCalibration, WrittenCalibrationLoadsBackIdentically) {
+  Expected<LoadedCalibration> original = LoadPair(testing::kRpgLeftYaml, testing::kRpgRightYaml);
+  ASSERT_TRUE(original.ok());
+  const auto dir = testing::ScratchDir() / "calib";
+  ASSERT_TRUE(WriteEsvoCalibration(dir.string(), original->rig).ok());
+  Expected<LoadedCalibration> back = LoadCalibration(dir.string());
+  ASSERT_TRUE(back.ok()) << back.status().message();
+  EXPECT_TRUE(back->warnings.empty());
+  const geometry::StereoRig& a = original->rig;
+  const geometry::StereoRig& b = back->rig;
+  EXPECT_EQ(a.P_right(), b.P_right());
+  EXPECT_LT((a.R_rect_left_left() - b.R_rect_left_left()).cwiseAbs().maxCoeff(), 1e-15);
+  EXPECT_EQ(a.left().intrinsics().coeffs, b.left().intrinsics().coeffs);
+  EXPECT_LT((a.T_right_left().Matrix() - b.T_right_left().Matrix()).cwiseAbs().maxCoeff(), 1e-15);
+  ASSERT_TRUE(b.T_imu_left().has_value());
+  EXPECT_LT((a.T_imu_left()->R - b.T_imu_left()->R).cwiseAbs().maxCoeff(), 1e-15);
+  // A folder cannot be made under a regular file (whatever the user's permissions).
+  const std::string file = testing::WriteFile(testing::ScratchDir() / "file.txt", "x");
+  EXPECT_FALSE(WriteEsvoCalibration(file + "/calib", a).ok());
+}
+
+}  // namespace
+}  // namespace aavio::io
