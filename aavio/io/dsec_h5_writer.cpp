@@ -50,6 +50,7 @@ struct DsecH5EventWriter::State {
 
 Expected<h5::Handle> DsecH5EventWriter::State::CreatePlist(std::size_t chunk) const {
   h5::Handle plist(H5Pcreate(H5P_DATASET_CREATE), H5Pclose);
+  H5Pset_obj_track_times(plist.get(), 0);  // no modification times: same events, same bytes
   const hsize_t chunk_dims = chunk;
   H5Pset_chunk(plist.get(), 1, &chunk_dims);
   if (options.compress) {
@@ -59,7 +60,8 @@ Expected<h5::Handle> DsecH5EventWriter::State::CreatePlist(std::size_t chunk) co
                                 ": cannot compress with blosc: the HDF5 blosc filter is not "
                                 "installed (Debian package hdf5-filter-plugin-blosc-serial)");
     }
-    // cd_values[0..3] are filled in by the filter; clevel, shuffle (2 = bit), compressor (5 = zstd).
+    // cd_values[0..3] are filled in by the filter; clevel, shuffle (2 = bit), compressor (5 =
+    // zstd).
     const unsigned cd[7] = {0, 0, 0, 0, static_cast<unsigned>(options.compression_level), 2, 5};
     if (H5Pset_filter(plist.get(), kBloscFilter, H5Z_FLAG_MANDATORY, 7, cd) < 0) {
       return IoError(path + ": cannot set the blosc filter (" + h5::TakeErrorMessage() + ")");
@@ -98,8 +100,8 @@ Status DsecH5EventWriter::State::Append(Column* c, const void* data, std::size_t
   h5::Handle mem(H5Screate_simple(1, &count, nullptr), H5Sclose);
   H5Sselect_hyperslab(space.get(), H5S_SELECT_SET, &start, nullptr, &count, nullptr);
   if (H5Dwrite(c->dataset.get(), c->mem_type, mem.get(), space.get(), H5P_DEFAULT, data) < 0) {
-    return IoError(path + ": writing " + name + " failed (disk full?) (" +
-                   h5::TakeErrorMessage() + ")");
+    return IoError(path + ": writing " + name + " failed (disk full?) (" + h5::TakeErrorMessage() +
+                   ")");
   }
   c->size = new_size;
   return Status::Ok();
@@ -136,8 +138,10 @@ Expected<std::unique_ptr<DsecH5EventWriter>> DsecH5EventWriter::Create(
   if (!s->file.valid()) {
     return IoError(path + ": cannot create (" + h5::TakeErrorMessage() + ")");
   }
-  s->group = h5::Handle(H5Gcreate2(s->file.get(), "events", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-                        H5Gclose);
+  h5::Handle group_plist(H5Pcreate(H5P_GROUP_CREATE), H5Pclose);
+  H5Pset_obj_track_times(group_plist.get(), 0);
+  s->group = h5::Handle(
+      H5Gcreate2(s->file.get(), "events", H5P_DEFAULT, group_plist.get(), H5P_DEFAULT), H5Gclose);
   const hid_t g = s->group.get();
   AAVIO_RETURN_IF_ERROR(s->CreateColumn(g, "x", H5T_STD_U16LE, H5T_NATIVE_UINT16, &s->columns[0]));
   AAVIO_RETURN_IF_ERROR(s->CreateColumn(g, "y", H5T_STD_U16LE, H5T_NATIVE_UINT16, &s->columns[1]));
@@ -190,7 +194,8 @@ Status DsecH5EventWriter::Close() {
   s.closed = true;
   AAVIO_RETURN_IF_ERROR(s.Flush());
   Column ms;
-  const std::size_t chunk = std::max<std::size_t>(1, std::min<std::size_t>(s.ms_to_idx.size(), 1 << 14));
+  const std::size_t chunk =
+      std::max<std::size_t>(1, std::min<std::size_t>(s.ms_to_idx.size(), 1 << 14));
   const hsize_t zero = 0;
   const hsize_t unlimited = H5S_UNLIMITED;
   {
@@ -206,15 +211,18 @@ Status DsecH5EventWriter::Close() {
   }
   {
     h5::Handle space(H5Screate(H5S_SCALAR), H5Sclose);
+    h5::Handle plist(H5Pcreate(H5P_DATASET_CREATE), H5Pclose);
+    H5Pset_obj_track_times(plist.get(), 0);
     h5::Handle d(H5Dcreate2(s.file.get(), "t_offset", H5T_STD_I64LE, space.get(), H5P_DEFAULT,
-                            H5P_DEFAULT, H5P_DEFAULT),
+                            plist.get(), H5P_DEFAULT),
                  H5Dclose);
     if (!d.valid() ||
         H5Dwrite(d.get(), H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, &s.t_offset_us) < 0) {
       return IoError(s.path + ": cannot write /t_offset (" + h5::TakeErrorMessage() + ")");
     }
   }
-  for (Column& c : s.columns) c.dataset.Reset();
+  for (Column& c : s.columns)
+    c.dataset.Reset();
   ms.dataset.Reset();
   s.group.Reset();
   if (H5Fclose(s.file.Release()) < 0) {

@@ -33,6 +33,15 @@ void Scene::AddBox(const geometry::RigidTransform& T, const Eigen::Vector3d& siz
   }
 }
 
+void Scene::Transform(const geometry::RigidTransform& T) {
+  for (Quad& q : quads_) {
+    q.origin = T * q.origin;
+    q.edge_u = T.R * q.edge_u;
+    q.edge_v = T.R * q.edge_v;
+  }
+  Build();
+}
+
 void Scene::Build() {
   const std::size_t n = quads_.size();
   lo_.resize(n);

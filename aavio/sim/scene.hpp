@@ -36,6 +36,8 @@ class Scene {
               const std::vector<Texture>& textures, bool with_bottom = true);
   /// Builds the BVH; call after the last Add and before Intersect.
   void Build();
+  /// Moves every quad by T_new_old (p_new = T · p_old) and rebuilds the BVH.
+  void Transform(const geometry::RigidTransform& T_new_old);
 
   /// Nearest hit of the ray o + s·dir (dir of unit length, s > 1e-6); false if none.
   bool Intersect(const Eigen::Vector3d& o, const Eigen::Vector3d& dir, Hit* hit) const;

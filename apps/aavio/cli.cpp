@@ -22,6 +22,7 @@ int RunCli(const std::vector<std::string>& args, std::ostream& out, std::ostream
   RegisterInfo(app, ctx);
   RegisterConfig(app, ctx);
   RegisterConvert(app, ctx);
+  RegisterSimulate(app, ctx);
   RegisterPlanned(app, ctx);
 
   std::vector<std::string> reversed(args.rbegin(), args.rend() - (args.empty() ? 0 : 1));

@@ -43,7 +43,7 @@ class SequenceSink {
 class BagSink final : public SequenceSink {
  public:
   static Expected<std::unique_ptr<BagSink>> Create(const fs::path& dir, io::BagCompression c,
-                                                  int width, int height) {
+                                                   int width, int height) {
     auto writer = io::BagWriter::Create((dir / "events.bag").string(),
                                         {.compression = c, .width = width, .height = height});
     if (!writer) return writer.status();
@@ -57,12 +57,14 @@ class BagSink final : public SequenceSink {
   }
   Status Imu(std::span<const imu::ImuSample> samples) override {
     has_imu_ = has_imu_ || !samples.empty();
-    for (const imu::ImuSample& s : samples) AAVIO_RETURN_IF_ERROR(writer_->WriteImu("/davis/left/imu", s));
+    for (const imu::ImuSample& s : samples)
+      AAVIO_RETURN_IF_ERROR(writer_->WriteImu("/davis/left/imu", s));
     return Status::Ok();
   }
   Status Poses(const std::vector<geometry::StampedPose>& poses) override {
     has_poses_ = !poses.empty();
-    for (const geometry::StampedPose& p : poses) AAVIO_RETURN_IF_ERROR(writer_->WritePose("/gt/pose", p));
+    for (const geometry::StampedPose& p : poses)
+      AAVIO_RETURN_IF_ERROR(writer_->WritePose("/gt/pose", p));
     return Status::Ok();
   }
   Status Close(io::SequenceDescription* d) override {
@@ -70,7 +72,8 @@ class BagSink final : public SequenceSink {
     d->left = {io::SourceFormat::kBag, path_, "/davis/left/events", {}};
     d->right = {io::SourceFormat::kBag, path_, "/davis/right/events", {}};
     if (has_imu_) d->imu = io::SourceSpec{io::SourceFormat::kBag, path_, "/davis/left/imu", {}};
-    if (has_poses_) d->gt_trajectory = io::SourceSpec{io::SourceFormat::kBag, path_, "/gt/pose", {}};
+    if (has_poses_)
+      d->gt_trajectory = io::SourceSpec{io::SourceFormat::kBag, path_, "/gt/pose", {}};
     return Status::Ok();
   }
 
@@ -158,7 +161,8 @@ Status Convert(const ConvertOptions& options, Context& ctx) {
     width = reader_options.stream.width = calib->rig.width();
     height = reader_options.stream.height = calib->rig.height();
   }
-  Expected<std::unique_ptr<io::SequenceReader>> reader = io::SequenceReader::Open(*in, reader_options);
+  Expected<std::unique_ptr<io::SequenceReader>> reader =
+      io::SequenceReader::Open(*in, reader_options);
   if (!reader) return reader.status();
   if (width == 0) {
     width = (*reader)->left().info().width;
@@ -171,7 +175,7 @@ Status Convert(const ConvertOptions& options, Context& ctx) {
   if (ec) return IoError(options.out + ": cannot create the folder (" + ec.message() + ")");
   std::unique_ptr<SequenceSink> sink;
   if (options.to == "bag") {
-    const io::BagCompression c = options.compression == "none" ? io::BagCompression::kNone
+    const io::BagCompression c = options.compression == "none"  ? io::BagCompression::kNone
                                  : options.compression == "bz2" ? io::BagCompression::kBz2
                                                                 : io::BagCompression::kLz4;
     auto s = BagSink::Create(out_dir, c, width, height);
@@ -223,12 +227,14 @@ Status Convert(const ConvertOptions& options, Context& ctx) {
 void RegisterConvert(CLI::App& app, Context& ctx) {
   auto options = std::make_shared<ConvertOptions>();
   CLI::App* sub = app.add_subcommand(
-      "convert", "Rewrite a sequence (sequence.yaml, DSEC folder or bag) as a ROS bag, DSEC-layout "
-                 "h5 or text, with a sequence.yaml for the result");
+      "convert",
+      "Rewrite a sequence (sequence.yaml, DSEC folder or bag) as a ROS bag, DSEC-layout "
+      "h5 or text, with a sequence.yaml for the result");
   sub->add_option("sequence", options->input, "Sequence to convert")->required();
   sub->add_option("--to", options->to, "Output format")->check(CLI::IsMember({"bag", "h5", "txt"}));
   sub->add_option("--out", options->out, "Output folder")->required();
-  sub->add_option("--calib", options->calibration, "Calibration (for a bag without a sequence.yaml)");
+  sub->add_option("--calib", options->calibration,
+                  "Calibration (for a bag without a sequence.yaml)");
   sub->add_option("--compression", options->compression, "Bag chunk compression")
       ->check(CLI::IsMember({"none", "lz4", "bz2"}));
   sub->add_option("--max-reorder-ms", options->max_reorder_ms,

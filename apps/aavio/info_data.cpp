@@ -1,8 +1,8 @@
 // `aavio info` on data: an event file (.h5, .txt), a bag, or a whole sequence.
 #include <filesystem>
-#include <set>
 #include <nlohmann/json.hpp>
 #include <ostream>
+#include <set>
 
 #include "aavio/common/format.hpp"
 #include "aavio/io/bag_streams.hpp"
@@ -34,11 +34,11 @@ nlohmann::json EventJson(const io::EventStats& s, const io::StreamInfo& info) {
 }
 
 std::string EventText(const io::EventStats& s, const io::StreamInfo& info) {
-  std::string text = StrFormat("%lld events, %s .. %s s (%.3f s), mean %.3f Mev/s, peak %.3f Mev/s",
-                               static_cast<long long>(s.count), FormatSecondsNs(s.t_first_ns).c_str(),
-                               FormatSecondsNs(s.t_last_ns).c_str(),
-                               NsToSeconds(s.t_last_ns - s.t_first_ns), s.mean_rate_hz * 1e-6,
-                               s.peak_rate_hz * 1e-6);
+  std::string text =
+      StrFormat("%lld events, %s .. %s s (%.3f s), mean %.3f Mev/s, peak %.3f Mev/s",
+                static_cast<long long>(s.count), FormatSecondsNs(s.t_first_ns).c_str(),
+                FormatSecondsNs(s.t_last_ns).c_str(), NsToSeconds(s.t_last_ns - s.t_first_ns),
+                s.mean_rate_hz * 1e-6, s.peak_rate_hz * 1e-6);
   if (info.width > 0) text += StrFormat(", %d x %d", info.width, info.height);
   if (s.max_x >= 0) text += StrFormat(", max x %d y %d", s.max_x, s.max_y);
   return text;
@@ -86,8 +86,8 @@ Status DescribeBag(const std::string& path, nlohmann::json* j, std::string* text
     topics[c.topic] = {{"type", c.type}, {"md5sum", c.md5sum}};
     if (c.md5sum == io::rosbag::kEventArray.md5sum ||
         c.md5sum == io::rosbag::kLegacyEventArrayMd5) {
-      AAVIO_RETURN_IF_ERROR(DescribeEvents(c.topic, {io::SourceFormat::kBag, path, c.topic, {}}, {},
-                                           j, text));
+      AAVIO_RETURN_IF_ERROR(
+          DescribeEvents(c.topic, {io::SourceFormat::kBag, path, c.topic, {}}, {}, j, text));
     } else if (c.md5sum == io::rosbag::kImu.md5sum) {
       AAVIO_RETURN_IF_ERROR(DescribeImu({io::SourceFormat::kBag, path, c.topic, {}}, {}, j, text));
     }
@@ -96,7 +96,8 @@ Status DescribeBag(const std::string& path, nlohmann::json* j, std::string* text
   return Status::Ok();
 }
 
-Status DescribeSequenceData(const io::SequenceDescription& d, nlohmann::json* j, std::string* text) {
+Status DescribeSequenceData(const io::SequenceDescription& d, nlohmann::json* j,
+                            std::string* text) {
   (*j)["kind"] = "sequence";
   (*j)["name"] = d.name;
   *text += "sequence  " + d.name + "  (" + d.origin + ")\n";

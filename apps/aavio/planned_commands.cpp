@@ -14,7 +14,6 @@ void RegisterPlanned(CLI::App& app, Context& ctx) {
     const char* issue;
   };
   static const Planned kPlanned[] = {
-      {"simulate", "Simulate a stereo event camera + IMU sequence with ground truth", "#4"},
       {"run", "Run the odometry on a sequence", "#8"},
       {"eval", "Evaluate a trajectory (ATE, RPE) or a run against ground truth", "#9"},
       {"demo", "Simulate a short sequence, run, evaluate and print the result", "#8"},

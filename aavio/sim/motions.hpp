@@ -1,0 +1,23 @@
+#pragma once
+/// Built-in parametric motions, deterministic from a seed. World frame: the first camera pose is
+/// the identity; the camera looks along +z with +y towards the ground, so gravity is +y.
+
+#include <vector>
+
+#include "aavio/geometry/pose_buffer.hpp"
+
+namespace aavio::sim {
+
+/// Hand-held 6-DoF: a slow walk forward plus smooth sways of ±0.3 m and ±20° (rpg-like).
+std::vector<geometry::StampedPose> HandHeldMotion(double duration_s, std::uint64_t seed);
+/// Urban driving at 5–12 m/s with turns and one stop, camera 1.4 m above a flat road (DSEC-like).
+std::vector<geometry::StampedPose> DrivingMotion(double duration_s, std::uint64_t seed);
+/// Drone flight in a hall: take-off-free hovering with translations of ±1.5 m and yaw (MVSEC).
+std::vector<geometry::StampedPose> DroneMotion(double duration_s, std::uint64_t seed);
+
+/// Gravity in the world frame of these motions [m/s²].
+inline Eigen::Vector3d BuiltInGravity() {
+  return {0.0, 9.81, 0.0};
+}
+
+}  // namespace aavio::sim

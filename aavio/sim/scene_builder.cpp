@@ -1,0 +1,211 @@
+#include "aavio/sim/scene_builder.hpp"
+
+#include <cmath>
+#include <random>
+
+namespace aavio::sim {
+
+namespace {
+
+/// A random texture with edges of every orientation; `cell_lo/hi` set its scale [m]. About a
+/// third of the surfaces carry horizontal structure (bricks, windows, level stripes): the case
+/// temporal stereo exists for.
+Texture RandomTexture(std::mt19937_64& rng, double cell_lo, double cell_hi) {
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  Texture t;
+  const double pick = unit(rng);
+  t.pattern = pick < 0.25   ? Pattern::kBricks
+              : pick < 0.5  ? Pattern::kTiles
+              : pick < 0.75 ? Pattern::kBlobs
+                            : Pattern::kStripes;
+  t.cell_m = cell_lo * std::pow(cell_hi / cell_lo, unit(rng));
+  const bool level = t.pattern == Pattern::kBricks || unit(rng) < 0.3;
+  t.angle_rad = level ? 0.0 : unit(rng) * M_PI;
+  t.contrast = 0.5 + 0.4 * unit(rng);
+  t.mean = 0.35 + 0.3 * unit(rng);
+  t.seed = rng();
+  return t;
+}
+
+Quad MakeQuad(const Eigen::Vector3d& origin, const Eigen::Vector3d& u, const Eigen::Vector3d& v,
+              const Texture& texture) {
+  return {origin, u, v, texture};
+}
+
+/// Box standing on a floor whose "up" is `up`, facing `forward` (perpendicular to up).
+void AddStandingBox(Scene* scene, const Eigen::Vector3d& base_centre, const Eigen::Vector3d& up,
+                    const Eigen::Vector3d& forward, const Eigen::Vector3d& size,
+                    const std::vector<Texture>& textures) {
+  Eigen::Matrix3d R;
+  R.col(2) = up.normalized();
+  R.col(1) = forward.normalized();
+  R.col(0) = R.col(1).cross(R.col(2));
+  scene->AddBox({R, base_centre + up.normalized() * size.z() / 2.0}, size, textures, false);
+}
+
+}  // namespace
+
+Scene BuildRoom(std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  Scene scene;
+  const double x0 = -3.0, x1 = 3.0, y_floor = 1.3, y_ceiling = -1.7, z0 = -2.5, z1 = 4.5;
+  const Eigen::Vector3d X = Eigen::Vector3d::UnitX(), Y = Eigen::Vector3d::UnitY(),
+                        Z = Eigen::Vector3d::UnitZ();
+  Texture floor = RandomTexture(rng, 0.15, 0.4);
+  floor.pattern = Pattern::kTiles;
+  const double height = y_floor - y_ceiling;
+  scene.AddQuad(MakeQuad({x0, y_floor, z0}, X * (x1 - x0), Z * (z1 - z0), floor));
+  scene.AddQuad(
+      MakeQuad({x0, y_ceiling, z0}, X * (x1 - x0), Z * (z1 - z0), RandomTexture(rng, 0.3, 0.8)));
+  scene.AddQuad(
+      MakeQuad({x0, y_floor, z1}, X * (x1 - x0), -Y * height, RandomTexture(rng, 0.08, 0.3)));
+  scene.AddQuad(
+      MakeQuad({x0, y_floor, z0}, X * (x1 - x0), -Y * height, RandomTexture(rng, 0.08, 0.3)));
+  scene.AddQuad(
+      MakeQuad({x0, y_floor, z0}, Z * (z1 - z0), -Y * height, RandomTexture(rng, 0.08, 0.3)));
+  scene.AddQuad(
+      MakeQuad({x1, y_floor, z0}, Z * (z1 - z0), -Y * height, RandomTexture(rng, 0.08, 0.3)));
+  // Posters a few centimetres off the walls.
+  for (int k = 0; k < 8; ++k) {
+    const double w = 0.4 + 0.8 * unit(rng), h = 0.3 + 0.6 * unit(rng);
+    const double x = x0 + 0.5 + (x1 - x0 - 1.0 - w) * unit(rng);
+    const double y = y_ceiling + 0.5 + (height - 1.0 - h) * unit(rng);
+    scene.AddQuad(MakeQuad({x, y + h, z1 - 0.02}, X * w, -Y * h, RandomTexture(rng, 0.03, 0.12)));
+  }
+  for (int k = 0; k < 4; ++k) {
+    const double w = 0.4 + 0.8 * unit(rng), h = 0.3 + 0.6 * unit(rng);
+    const double z = z0 + 1.0 + (z1 - z0 - 2.0 - w) * unit(rng);
+    const double y = y_ceiling + 0.5 + (height - 1.0 - h) * unit(rng);
+    const double x = (k % 2 == 0) ? x0 + 0.02 : x1 - 0.02;
+    scene.AddQuad(MakeQuad({x, y + h, z}, Z * w, -Y * h, RandomTexture(rng, 0.03, 0.12)));
+  }
+  // Objects on the floor, 0.8–3.6 m ahead of the start.
+  for (int k = 0; k < 9; ++k) {
+    const Eigen::Vector3d size(0.2 + 0.5 * unit(rng), 0.2 + 0.5 * unit(rng), 0.2 + 0.9 * unit(rng));
+    const Eigen::Vector3d base(-1.8 + 3.6 * unit(rng), y_floor, 0.8 + 2.8 * unit(rng));
+    const double yaw = unit(rng) * M_PI;
+    AddStandingBox(&scene, base, -Y, Eigen::Vector3d(std::sin(yaw), 0, std::cos(yaw)), size,
+                   {RandomTexture(rng, 0.03, 0.12), RandomTexture(rng, 0.03, 0.12)});
+  }
+  scene.Build();
+  return scene;
+}
+
+Scene BuildHall(std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  Scene scene;
+  const double x0 = -10, x1 = 10, y_floor = 1.5, y_ceiling = -6.5, z0 = -10, z1 = 10;
+  const Eigen::Vector3d X = Eigen::Vector3d::UnitX(), Y = Eigen::Vector3d::UnitY(),
+                        Z = Eigen::Vector3d::UnitZ();
+  const double height = y_floor - y_ceiling;
+  scene.AddQuad(
+      MakeQuad({x0, y_floor, z0}, X * (x1 - x0), Z * (z1 - z0), RandomTexture(rng, 0.3, 0.8)));
+  scene.AddQuad(
+      MakeQuad({x0, y_ceiling, z0}, X * (x1 - x0), Z * (z1 - z0), RandomTexture(rng, 0.5, 1.5)));
+  scene.AddQuad(
+      MakeQuad({x0, y_floor, z1}, X * (x1 - x0), -Y * height, RandomTexture(rng, 0.2, 0.8)));
+  scene.AddQuad(
+      MakeQuad({x0, y_floor, z0}, X * (x1 - x0), -Y * height, RandomTexture(rng, 0.2, 0.8)));
+  scene.AddQuad(
+      MakeQuad({x0, y_floor, z0}, Z * (z1 - z0), -Y * height, RandomTexture(rng, 0.2, 0.8)));
+  scene.AddQuad(
+      MakeQuad({x1, y_floor, z0}, Z * (z1 - z0), -Y * height, RandomTexture(rng, 0.2, 0.8)));
+  for (int k = 0; k < 6; ++k) {  // pillars
+    const Eigen::Vector3d base(-8 + 16 * unit(rng), y_floor, -8 + 16 * unit(rng));
+    if (std::hypot(base.x(), base.z()) < 3.0) continue;  // keep the take-off area clear
+    AddStandingBox(&scene, base, -Y, Z, {0.6, 0.6, height}, {RandomTexture(rng, 0.1, 0.4)});
+  }
+  for (int k = 0; k < 14; ++k) {  // crates and nets
+    const Eigen::Vector3d base(-8 + 16 * unit(rng), y_floor, -8 + 16 * unit(rng));
+    if (std::hypot(base.x(), base.z()) < 2.5) continue;
+    const Eigen::Vector3d size(0.5 + 1.5 * unit(rng), 0.5 + 1.5 * unit(rng), 0.4 + 2.0 * unit(rng));
+    const double yaw = unit(rng) * M_PI;
+    AddStandingBox(&scene, base, -Y, Eigen::Vector3d(std::sin(yaw), 0, std::cos(yaw)), size,
+                   {RandomTexture(rng, 0.05, 0.3), RandomTexture(rng, 0.05, 0.3)});
+  }
+  scene.Build();
+  return scene;
+}
+
+Scene BuildStreet(const std::vector<geometry::StampedPose>& path, const Eigen::Vector3d& down_in,
+                  double camera_height_m, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const Eigen::Vector3d down = down_in.normalized();
+  const Eigen::Vector3d up = -down;
+  // Ground points under the camera, every ~10 m of travel, extended 40 m past both ends.
+  std::vector<Eigen::Vector3d> ground;
+  for (const geometry::StampedPose& p : path) {
+    const Eigen::Vector3d g = p.T_world_body.t + down * camera_height_m;
+    if (ground.empty() || (g - ground.back()).norm() >= 10.0) ground.push_back(g);
+  }
+  if (ground.size() < 2) {  // standing still: a street along the camera's view
+    const Eigen::Vector3d forward = path.front().T_world_body.R.col(2);
+    ground = {ground.front(),
+              ground.front() + (forward - forward.dot(down) * down).normalized() * 10.0};
+  }
+  auto horizontal = [&](Eigen::Vector3d v) { return (v - v.dot(down) * down).normalized(); };
+  const Eigen::Vector3d first_dir = horizontal(ground[1] - ground[0]);
+  const Eigen::Vector3d last_dir = horizontal(ground.back() - ground[ground.size() - 2]);
+  std::vector<Eigen::Vector3d> extended;
+  extended.reserve(ground.size() + 2);
+  extended.push_back(ground.front() - first_dir * 40.0);
+  for (const Eigen::Vector3d& g : ground)
+    extended.push_back(g);
+  extended.push_back(ground.back() + last_dir * 40.0);
+  ground.swap(extended);
+
+  Scene scene;
+  Texture road;
+  road.pattern = Pattern::kTiles;
+  road.cell_m = 1.2;
+  road.contrast = 0.35;
+  road.mean = 0.35;
+  for (std::size_t i = 0; i + 1 < ground.size(); ++i) {
+    const Eigen::Vector3d a = ground[i], b = ground[i + 1];
+    const Eigen::Vector3d along = b - a;
+    const Eigen::Vector3d f = horizontal(along);
+    const Eigen::Vector3d right = down.cross(f);  // camera x: y × z
+    road.seed = rng();
+    road.angle_rad = 0.3 * (unit(rng) - 0.5);
+    scene.AddQuad(MakeQuad(a - right * 8.0, right * 16.0, along, road));
+    for (double side : {-1.0, 1.0}) {
+      // Facade: windows in rows (horizontal sills and ledges) or bricks; 6–15 m away.
+      const double distance = 6.0 + 9.0 * unit(rng);
+      const double height = 8.0 + 12.0 * unit(rng);
+      Texture facade;
+      facade.pattern = unit(rng) < 0.7 ? Pattern::kWindows : Pattern::kBricks;
+      facade.cell_m =
+          facade.pattern == Pattern::kWindows ? 1.0 + 0.8 * unit(rng) : 0.25 + 0.2 * unit(rng);
+      facade.contrast = 0.5 + 0.4 * unit(rng);
+      facade.mean = 0.35 + 0.3 * unit(rng);
+      facade.seed = rng();
+      const Eigen::Vector3d base = a + right * side * distance;
+      // u along the street, v up: facade patterns are level with the ground.
+      scene.AddQuad(MakeQuad(base, along, up * height, facade));
+      // A ledge band part-way up: a strong horizontal edge.
+      Texture ledge = RandomTexture(rng, 0.2, 0.5);
+      ledge.pattern = Pattern::kStripes;
+      ledge.angle_rad = 0.0;
+      const double ledge_at = 3.0 + 2.0 * unit(rng);
+      scene.AddQuad(MakeQuad(base - right * side * 0.05 + up * ledge_at, along, up * 0.4, ledge));
+      // Poles at the kerb and parked cars.
+      if (unit(rng) < 0.7) {
+        AddStandingBox(&scene, a + along * unit(rng) + right * side * 4.5, up, f, {0.15, 0.15, 5.0},
+                       {RandomTexture(rng, 0.05, 0.2)});
+      }
+      if (unit(rng) < 0.5) {
+        AddStandingBox(&scene, a + along * (0.2 + 0.6 * unit(rng)) + right * side * 3.3, up, f,
+                       {1.8, 4.2, 1.5},
+                       {RandomTexture(rng, 0.1, 0.4), RandomTexture(rng, 0.1, 0.4)});
+      }
+    }
+  }
+  scene.sky_albedo = 0.8;
+  scene.Build();
+  return scene;
+}
+
+}  // namespace aavio::sim

@@ -1,0 +1,478 @@
+#include "aavio/sim/simulator.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <thread>
+
+#include "aavio/common/format.hpp"
+#include "aavio/io/bag_writer.hpp"
+#include "aavio/io/calibration.hpp"
+#include "aavio/io/config_yaml.hpp"
+#include "aavio/io/dsec_h5_writer.hpp"
+#include "aavio/io/sequence.hpp"
+#include "aavio/io/text_streams.hpp"
+#include "aavio/io/trajectory_io.hpp"
+#include "aavio/sim/event_generator.hpp"
+#include "aavio/sim/imu_synthesis.hpp"
+#include "aavio/sim/motion_spline.hpp"
+#include "aavio/sim/motions.hpp"
+#include "aavio/sim/presets.hpp"
+#include "aavio/sim/recorded_motion.hpp"
+#include "aavio/sim/renderer.hpp"
+#include "aavio/sim/scene_builder.hpp"
+
+namespace aavio::sim {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+using Motion = CameraPath;
+
+Expected<Motion> BuildMotion(const SimulationRequest& request, const SimulationPreset& preset) {
+  if (request.trajectory.empty()) {
+    Motion motion;
+    const double duration = request.duration_s.value_or(preset.duration_s);
+    switch (preset.motion) {
+      case MotionKind::kHandHeld:
+        motion.poses = HandHeldMotion(duration, request.seed);
+        break;
+      case MotionKind::kDriving:
+        motion.poses = DrivingMotion(duration, request.seed);
+        break;
+      case MotionKind::kDrone:
+        motion.poses = DroneMotion(duration, request.seed);
+        break;
+    }
+    motion.gravity_world = BuiltInGravity();
+    return motion;
+  }
+  Expected<std::vector<geometry::StampedPose>> recorded = io::ReadTumTrajectory(request.trajectory);
+  if (!recorded) return recorded.status();
+  Expected<CameraPath> path = CameraPathFromRecording(
+      *recorded, request.start_s, request.duration_s.value_or(0.0), request.body_to_camera);
+  if (!path) return path.status().WithContext(request.trajectory);
+  return path;
+}
+
+/// Rotation taking the canonical scene frame (y down, z forward) to the world: y along gravity,
+/// z along the first camera's view projected onto the level plane.
+geometry::RigidTransform SceneFrame(const Motion& motion) {
+  const Eigen::Vector3d y = motion.gravity_world.normalized();
+  // The first camera's view direction, levelled; a camera looking along gravity uses its image
+  // "up" (−y) instead, then its x axis.
+  const Eigen::Matrix3d& R0 = motion.poses.front().T_world_body.R;
+  Eigen::Vector3d z = Eigen::Vector3d::UnitZ();
+  for (const Eigen::Vector3d& candidate :
+       {Eigen::Vector3d(R0.col(2)), Eigen::Vector3d(-R0.col(1)), Eigen::Vector3d(R0.col(0))}) {
+    const Eigen::Vector3d level = candidate - candidate.dot(y) * y;
+    if (level.norm() > 0.3) {
+      z = level.normalized();
+      break;
+    }
+  }
+  Eigen::Matrix3d R;
+  R.col(0) = y.cross(z);
+  R.col(1) = y;
+  R.col(2) = z;
+  return {R, Eigen::Vector3d::Zero()};
+}
+
+/// The event output of one format.
+class EventSink {
+ public:
+  virtual ~EventSink() = default;
+  virtual Status Write(bool left, const std::vector<events::Event>& events) = 0;
+  virtual Status Finish(const std::vector<imu::ImuSample>& imu,
+                        const std::vector<geometry::StampedPose>& poses,
+                        io::SequenceDescription* d) = 0;
+};
+
+class FilesSink final : public EventSink {
+ public:
+  static Expected<std::unique_ptr<FilesSink>> Create(const fs::path& dir, bool h5) {
+    auto sink = std::make_unique<FilesSink>();
+    sink->dir_ = dir;
+    for (int side = 0; side < 2; ++side) {
+      const fs::path sub = dir / "events" / (side == 0 ? "left" : "right");
+      fs::create_directories(sub);
+      sink->paths_[side] = (sub / (h5 ? "events.h5" : "events.txt")).string();
+      if (h5) {
+        auto w = io::DsecH5EventWriter::Create(sink->paths_[side]);
+        if (!w) return w.status();
+        sink->h5_[side] = std::move(*w);
+      } else {
+        auto w = io::TextEventWriter::Create(sink->paths_[side]);
+        if (!w) return w.status();
+        sink->txt_[side] = std::move(*w);
+      }
+    }
+    return sink;
+  }
+  Status Write(bool left, const std::vector<events::Event>& events) override {
+    const int side = left ? 0 : 1;
+    return h5_[side] ? h5_[side]->Write(events) : txt_[side]->Write(events);
+  }
+  Status Finish(const std::vector<imu::ImuSample>& imu, const std::vector<geometry::StampedPose>&,
+                io::SequenceDescription* d) override {
+    for (int side = 0; side < 2; ++side) {
+      AAVIO_RETURN_IF_ERROR(h5_[side] ? h5_[side]->Close() : txt_[side]->Close());
+    }
+    const io::SourceFormat format = h5_[0] ? io::SourceFormat::kDsecH5 : io::SourceFormat::kText;
+    d->left = {format, paths_[0], "", {}};
+    d->right = {format, paths_[1], "", {}};
+    const std::string imu_path = (dir_ / "imu.txt").string();
+    AAVIO_RETURN_IF_ERROR(io::WriteImuText(imu_path, imu));
+    d->imu = io::SourceSpec{io::SourceFormat::kText, imu_path, "", io::ImuTextLayout::kEcd};
+    return Status::Ok();
+  }
+
+ private:
+  fs::path dir_;
+  std::string paths_[2];
+  std::unique_ptr<io::DsecH5EventWriter> h5_[2];
+  std::unique_ptr<io::TextEventWriter> txt_[2];
+};
+
+class BagSink final : public EventSink {
+ public:
+  static Expected<std::unique_ptr<BagSink>> Create(const fs::path& dir, int width, int height) {
+    auto sink = std::make_unique<BagSink>();
+    sink->path_ = (dir / "events.bag").string();
+    auto w = io::BagWriter::Create(sink->path_, {.width = width, .height = height});
+    if (!w) return w.status();
+    sink->writer_ = std::move(*w);
+    return sink;
+  }
+  Status Write(bool left, const std::vector<events::Event>& events) override {
+    return writer_->WriteEvents(left ? "/davis/left/events" : "/davis/right/events", events);
+  }
+  Status Finish(const std::vector<imu::ImuSample>& imu,
+                const std::vector<geometry::StampedPose>& poses,
+                io::SequenceDescription* d) override {
+    for (const imu::ImuSample& s : imu)
+      AAVIO_RETURN_IF_ERROR(writer_->WriteImu("/davis/left/imu", s));
+    for (const geometry::StampedPose& p : poses)
+      AAVIO_RETURN_IF_ERROR(writer_->WritePose("/gt/pose", p));
+    AAVIO_RETURN_IF_ERROR(writer_->Close());
+    d->left = {io::SourceFormat::kBag, path_, "/davis/left/events", {}};
+    d->right = {io::SourceFormat::kBag, path_, "/davis/right/events", {}};
+    d->imu = io::SourceSpec{io::SourceFormat::kBag, path_, "/davis/left/imu", {}};
+    return Status::Ok();
+  }
+
+ private:
+  std::string path_;
+  std::unique_ptr<io::BagWriter> writer_;
+};
+
+/// Smallest depths in view (2nd percentile) bound the optical flow for the adaptive step.
+double NearDepth(const std::vector<float>& depth) {
+  std::vector<float> sample;
+  for (std::size_t i = 0; i < depth.size(); i += 7) {
+    if (depth[i] > 0.0f) sample.push_back(depth[i]);
+  }
+  if (sample.empty()) return 1.0;
+  const std::size_t k = sample.size() / 50;
+  std::nth_element(sample.begin(), sample.begin() + static_cast<std::ptrdiff_t>(k), sample.end());
+  return std::max(0.05, static_cast<double>(sample[k]));
+}
+
+Status WriteScene(const std::string& path, const Scene& scene) {
+  std::string text =
+      "# quads: origin(3) edge_u(3) edge_v(3) pattern cell_m angle_rad contrast mean seed\n";
+  for (const Quad& q : scene.quads()) {
+    text += StrFormat("%.6f %.6f %.6f %.6f %.6f %.6f %.6f %.6f %.6f %d %.6f %.6f %.4f %.4f %llu\n",
+                      q.origin.x(), q.origin.y(), q.origin.z(), q.edge_u.x(), q.edge_u.y(),
+                      q.edge_u.z(), q.edge_v.x(), q.edge_v.y(), q.edge_v.z(),
+                      static_cast<int>(q.texture.pattern), q.texture.cell_m, q.texture.angle_rad,
+                      q.texture.contrast, q.texture.mean,
+                      static_cast<unsigned long long>(q.texture.seed));
+  }
+  return io::WriteTextFile(path, text);
+}
+
+cv::Mat EventFrame(const std::vector<events::Event>& events, int width, int height) {
+  cv::Mat image(height, width, CV_8UC3, cv::Scalar(255, 255, 255));
+  for (const events::Event& e : events) {
+    image.at<cv::Vec3b>(e.y, e.x) = e.polarity ? cv::Vec3b(200, 60, 0) : cv::Vec3b(0, 0, 220);
+  }
+  return image;
+}
+
+cv::Mat DepthColour(const std::vector<float>& depth, int width, int height) {
+  cv::Mat inv(height, width, CV_8UC1, cv::Scalar(0));
+  float lo = 1e9f, hi = 0.0f;
+  for (float d : depth) {
+    if (d > 0.0f) {
+      lo = std::min(lo, 1.0f / d);
+      hi = std::max(hi, 1.0f / d);
+    }
+  }
+  for (int i = 0; i < width * height; ++i) {
+    if (depth[i] > 0.0f && hi > lo) {
+      inv.data[i] = static_cast<std::uint8_t>(255.0f * (1.0f / depth[i] - lo) / (hi - lo));
+    }
+  }
+  cv::Mat colour;
+  cv::applyColorMap(inv, colour, cv::COLORMAP_JET);  // red near, blue far
+  for (int i = 0; i < width * height; ++i) {
+    if (depth[i] <= 0.0f) colour.at<cv::Vec3b>(i / width, i % width) = cv::Vec3b(0, 0, 0);
+  }
+  return colour;
+}
+
+cv::Mat TopView(const Scene& scene, const std::vector<geometry::StampedPose>& path,
+                const geometry::RigidTransform& T_world_canonical) {
+  // Project onto the level plane of the canonical frame (x right, z forward).
+  const geometry::RigidTransform T = T_world_canonical.Inverse();
+  std::vector<cv::Point2d> points;
+  for (const auto& p : path) {
+    const Eigen::Vector3d c = T * p.T_world_body.t;
+    points.emplace_back(c.x(), c.z());
+  }
+  double x0 = -5, x1 = 5, z0 = -5, z1 = 5;
+  for (const cv::Point2d& p : points) {
+    x0 = std::min(x0, p.x - 10);
+    x1 = std::max(x1, p.x + 10);
+    z0 = std::min(z0, p.y - 10);
+    z1 = std::max(z1, p.y + 10);
+  }
+  const double scale = 800.0 / std::max(x1 - x0, z1 - z0);
+  auto px = [&](double x, double z) {
+    return cv::Point(static_cast<int>((x - x0) * scale), static_cast<int>((z1 - z) * scale));
+  };
+  cv::Mat image(static_cast<int>((z1 - z0) * scale) + 1, static_cast<int>((x1 - x0) * scale) + 1,
+                CV_8UC3, cv::Scalar(255, 255, 255));
+  for (const Quad& q : scene.quads()) {
+    const Eigen::Vector3d a = T * q.origin, b = T * (q.origin + q.edge_u),
+                          c = T * (q.origin + q.edge_v);
+    cv::line(image, px(a.x(), a.z()), px(b.x(), b.z()), cv::Scalar(120, 120, 120), 1);
+    cv::line(image, px(a.x(), a.z()), px(c.x(), c.z()), cv::Scalar(120, 120, 120), 1);
+  }
+  for (std::size_t i = 1; i < points.size(); ++i) {
+    cv::line(image, px(points[i - 1].x, points[i - 1].y), px(points[i].x, points[i].y),
+             cv::Scalar(0, 0, 230), 2);
+  }
+  return image;
+}
+
+}  // namespace
+
+Expected<SimulationReport> Simulate(const SimulationRequest& request,
+                                    const std::function<void(double)>& progress) {
+  const auto wall_start = std::chrono::steady_clock::now();
+  if (request.out_dir.empty()) return InvalidArgument("an output folder is needed (--out)");
+  if (request.format != "h5" && request.format != "bag" && request.format != "txt") {
+    return InvalidArgument("--format must be h5, bag or txt, got '" + request.format + "'");
+  }
+  Expected<SimulationPreset> preset = GetSimulationPreset(request.preset);
+  if (!preset) return preset.status();
+  Expected<geometry::StereoRig> rig = preset->rig();
+  if (!request.calibration.empty()) {
+    Expected<io::LoadedCalibration> loaded = io::LoadCalibration(request.calibration);
+    if (!loaded) return loaded.status();
+    rig = loaded->rig;
+  }
+  if (!rig) return rig.status();
+  Expected<Motion> motion = BuildMotion(request, *preset);
+  if (!motion) return motion.status();
+  Expected<MotionSpline> spline = MotionSpline::Fit(motion->poses);
+  if (!spline) return spline.status();
+
+  const geometry::RigidTransform T_world_canonical = SceneFrame(*motion);
+  Scene scene;
+  switch (preset->scene) {
+    case SceneKind::kRoom:
+      scene = BuildRoom(request.seed);
+      break;
+    case SceneKind::kHall:
+      scene = BuildHall(request.seed);
+      break;
+    case SceneKind::kStreet:
+      scene =
+          BuildStreet(motion->poses, motion->gravity_world, preset->camera_height_m, request.seed);
+      break;
+  }
+  if (preset->scene != SceneKind::kStreet) scene.Transform(T_world_canonical);
+
+  const fs::path out(request.out_dir);
+  std::error_code ec;
+  fs::create_directories(out / "depth", ec);
+  if (ec) return IoError(request.out_dir + ": cannot create the folder (" + ec.message() + ")");
+  AAVIO_RETURN_IF_ERROR(
+      io::WriteEsvoCalibration((out / "calibration").string(), *rig, "aavio_" + preset->name));
+  AAVIO_RETURN_IF_ERROR(WriteScene((out / "scene.txt").string(), scene));
+
+  std::unique_ptr<EventSink> sink;
+  if (request.format == "bag") {
+    auto s = BagSink::Create(out, rig->width(), rig->height());
+    if (!s) return s.status();
+    sink = std::move(*s);
+  } else {
+    auto s = FilesSink::Create(out, request.format == "h5");
+    if (!s) return s.status();
+    sink = std::move(*s);
+  }
+
+  // Camera poses: the spline is the rectified left camera; raw left and right follow.
+  const geometry::RigidTransform T_rect_left(rig->R_rect_left_left(), Eigen::Vector3d::Zero());
+  const geometry::RigidTransform T_left_right = rig->T_right_left().Inverse();
+  const Renderer renderers[2] = {Renderer(rig->left()), Renderer(rig->right())};
+  geometry::CameraIntrinsics rect_in{rig->width(),
+                                     rig->height(),
+                                     rig->focal_px(),
+                                     rig->focal_px(),
+                                     rig->cx_left(),
+                                     rig->cy(),
+                                     geometry::DistortionModel::kNone,
+                                     {}};
+  const Renderer depth_renderer(*geometry::CameraModel::Create(rect_in));
+  EventGenerator generators[2] = {
+      EventGenerator(rig->width(), rig->height(), preset->events, request.seed * 2 + 11),
+      EventGenerator(rig->width(), rig->height(), preset->events, request.seed * 2 + 12)};
+  auto camera_pose = [&](int side, TimeNs t) {
+    const geometry::RigidTransform T_world_left = spline->Pose(t) * T_rect_left;
+    return side == 0 ? T_world_left : T_world_left * T_left_right;
+  };
+
+  const TimeNs t_begin = spline->t_begin_ns(), t_end = spline->t_end_ns();
+  RenderedImage images[2];
+  for (int side = 0; side < 2; ++side) {
+    renderers[side].Render(scene, camera_pose(side, t_begin), &images[side]);
+    generators[side].Reset(images[side].intensity, t_begin);
+  }
+  const double f_px = (rig->left().intrinsics().fx + rig->left().intrinsics().fy) / 2.0;
+  std::vector<events::Event> batch[2];
+  std::vector<std::int64_t> pixel_counts(static_cast<std::size_t>(rig->width()) * rig->height(), 0);
+  SimulationReport report;
+  report.body_to_camera = motion->body_to_camera;
+
+  // Ground-truth depth: rectified left camera at a fixed rate, as DSEC-style disparity PNGs.
+  const TimeNs depth_step = SecondsToNs(1.0 / preset->depth_rate_hz);
+  TimeNs next_depth = t_begin;
+  std::string depth_stamps = "# t[s] index\n";
+  auto write_depth = [&](TimeNs t) -> Status {
+    RenderedImage d;
+    depth_renderer.Render(scene, spline->Pose(t), &d);
+    cv::Mat disparity(rig->height(), rig->width(), CV_16UC1, cv::Scalar(0));
+    cv::Mat depth(rig->height(), rig->width(), CV_32FC1, cv::Scalar(0));
+    const double offset = rig->cx_left() - rig->cx_right();
+    for (int i = 0; i < rig->width() * rig->height(); ++i) {
+      const float z = d.depth_m[i];
+      if (z <= 0.0f) continue;
+      depth.at<float>(i / rig->width(), i % rig->width()) = z;
+      const double disp = rig->focal_px() * rig->baseline_m() / static_cast<double>(z) + offset;
+      if (disp > 0.0 && disp * 256.0 < 65535.0) {
+        disparity.at<std::uint16_t>(i / rig->width(), i % rig->width()) =
+            static_cast<std::uint16_t>(std::lround(disp * 256.0));
+      }
+    }
+    const std::string index = StrFormat("%06lld", static_cast<long long>(report.depth_maps));
+    if (!cv::imwrite((out / "depth" / ("disparity_" + index + ".png")).string(), disparity) ||
+        !cv::imwrite((out / "depth" / ("depth_" + index + ".tiff")).string(), depth)) {
+      return IoError((out / "depth").string() + ": cannot write the ground-truth maps");
+    }
+    if (request.preview && report.depth_maps == 0) {
+      cv::imwrite((out / "preview" / "gt_depth.png").string(),
+                  DepthColour(d.depth_m, rig->width(), rig->height()));
+    }
+    depth_stamps += FormatSecondsNs(t) + " " + index + "\n";
+    ++report.depth_maps;
+    return Status::Ok();
+  };
+  if (request.preview) fs::create_directories(out / "preview");
+
+  std::vector<events::Event> preview_events[2];
+  const TimeNs preview_at = t_begin + (t_end - t_begin) / 2;
+  TimeNs t = t_begin;
+  while (t < t_end) {
+    // Adaptive step: about one pixel of image motion (ω and v / nearest depth) between renders.
+    const double speed_px =
+        f_px * (spline->AngularVelocity(t).norm() +
+                spline->LinearVelocity(t).norm() / NearDepth(images[0].depth_m));
+    const double dt_s = std::clamp(1.0 / std::max(speed_px, 1e-6), 50e-6, 5e-3);
+    const TimeNs t_next = std::min(t_end, t + SecondsToNs(dt_s));
+    auto step = [&](int side) {
+      renderers[side].Render(scene, camera_pose(side, t_next), &images[side]);
+      batch[side].clear();
+      generators[side].Step(images[side].intensity, t_next, &batch[side]);
+    };
+    std::thread right_thread(step, 1);
+    step(0);
+    right_thread.join();
+    for (int side = 0; side < 2; ++side)
+      AAVIO_RETURN_IF_ERROR(sink->Write(side == 0, batch[side]));
+    for (const events::Event& e : batch[0])
+      ++pixel_counts[static_cast<std::size_t>(e.y) * rig->width() + e.x];
+    report.events_left += static_cast<std::int64_t>(batch[0].size());
+    report.events_right += static_cast<std::int64_t>(batch[1].size());
+    if (request.preview && t_next > preview_at - 20 * kNsPerMs && t <= preview_at) {
+      for (int side = 0; side < 2; ++side) {
+        preview_events[side].insert(preview_events[side].end(), batch[side].begin(),
+                                    batch[side].end());
+      }
+    }
+    while (next_depth <= t_next) {
+      AAVIO_RETURN_IF_ERROR(write_depth(next_depth));
+      next_depth += depth_step;
+    }
+    ++report.render_steps;
+    t = t_next;
+    if (progress) progress(NsToSeconds(t - t_begin) / std::max(1e-9, NsToSeconds(t_end - t_begin)));
+  }
+  AAVIO_RETURN_IF_ERROR(
+      io::WriteTextFile((out / "depth" / "timestamps.txt").string(), depth_stamps));
+
+  // IMU through the extrinsic (identity if the calibration has none) and ground-truth poses.
+  const geometry::RigidTransform T_imu_rect =
+      rig->T_imu_rect_left().value_or(geometry::RigidTransform());
+  Expected<std::vector<imu::ImuSample>> imu =
+      SynthesizeImu(*spline, T_imu_rect, motion->gravity_world, preset->imu, request.seed * 2 + 13);
+  if (!imu) return imu.status();
+  std::vector<geometry::StampedPose> gt;
+  const TimeNs pose_step = SecondsToNs(1.0 / preset->pose_rate_hz);
+  for (TimeNs tp = t_begin; tp <= t_end; tp += pose_step)
+    gt.push_back({tp, spline->Pose(tp)});
+  AAVIO_RETURN_IF_ERROR(io::WriteTumTrajectory((out / "groundtruth.txt").string(), gt));
+
+  io::SequenceDescription d;
+  d.name = fs::absolute(out).lexically_normal().filename().string();
+  d.calibration = (out / "calibration").string();
+  AAVIO_RETURN_IF_ERROR(sink->Finish(*imu, gt, &d));
+  d.gt_trajectory =
+      io::SourceSpec{io::SourceFormat::kText, (out / "groundtruth.txt").string(), "", {}};
+  d.gt_depth = (out / "depth").string();
+  report.sequence_yaml = (out / "sequence.yaml").string();
+  AAVIO_RETURN_IF_ERROR(io::WriteSequenceYaml(report.sequence_yaml, d));
+
+  if (request.preview) {
+    for (int side = 0; side < 2; ++side) {
+      cv::imwrite((out / "preview" / (side == 0 ? "events_left.png" : "events_right.png")).string(),
+                  EventFrame(preview_events[side], rig->width(), rig->height()));
+    }
+    cv::imwrite((out / "preview" / "top_view.png").string(), TopView(scene, gt, T_world_canonical));
+  }
+
+  report.duration_s = NsToSeconds(t_end - t_begin);
+  report.imu_samples = static_cast<std::int64_t>(imu->size());
+  report.noise_events = generators[0].noise_events() + generators[1].noise_events();
+  report.mean_rate_ev_s =
+      static_cast<double>(report.events_left) / std::max(report.duration_s, 1e-9);
+  std::sort(pixel_counts.begin(), pixel_counts.end());
+  report.pixel_rate_median_hz =
+      static_cast<double>(pixel_counts[pixel_counts.size() / 2]) / report.duration_s;
+  report.pixel_rate_p99_hz =
+      static_cast<double>(pixel_counts[pixel_counts.size() * 99 / 100]) / report.duration_s;
+  report.wall_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  return report;
+}
+
+}  // namespace aavio::sim

@@ -1,0 +1,50 @@
+#pragma once
+/// `aavio simulate`: a stereo event camera + IMU sequence with exact ground truth, written as a
+/// sequence folder that `aavio info` and the readers understand (design.md §5):
+///   sequence.yaml, calibration/{left,right}.yaml (ESVO style, with T_b_c),
+///   events/{left,right}/events.h5 (or one events.bag, or events.txt), imu.txt,
+///   groundtruth.txt (TUM, the rectified left camera in the world of its first pose),
+///   depth/ (rectified-left disparity ×256 as 16-bit PNG and metric depth as 32-bit TIFF, with
+///   timestamps.txt), scene.txt (the quads), and preview/ PNGs on request.
+
+#include <functional>
+#include <optional>
+#include <string>
+
+#include "aavio/common/status.hpp"
+
+namespace aavio::sim {
+
+struct SimulationRequest {
+  std::string preset = "mini";
+  std::string out_dir;
+  std::string format = "h5";         ///< h5 | bag | txt
+  std::optional<double> duration_s;  ///< default: the preset's (or the whole trajectory)
+  double start_s = 0.0;              ///< offset into a recorded trajectory
+  std::uint64_t seed = 1;
+  std::string trajectory;               ///< TUM file: follow a recorded camera path (a twin)
+  std::string calibration;              ///< ESVO/DSEC calibration replacing the preset's
+  std::string body_to_camera = "auto";  ///< identity | driving | auto (driving rule for cars)
+  bool preview = false;
+};
+
+struct SimulationReport {
+  double duration_s = 0.0;
+  double wall_s = 0.0;
+  std::int64_t events_left = 0, events_right = 0;
+  std::int64_t noise_events = 0;  ///< background activity and hot pixels, both cameras
+  std::int64_t render_steps = 0;
+  std::int64_t imu_samples = 0;
+  std::int64_t depth_maps = 0;
+  double mean_rate_ev_s = 0.0;        ///< per camera
+  double pixel_rate_median_hz = 0.0;  ///< events per pixel per second, left camera
+  double pixel_rate_p99_hz = 0.0;
+  std::string body_to_camera;  ///< the rotation that was used, in words
+  std::string sequence_yaml;
+};
+
+/// Runs the simulation; `progress` (if set) is called with the fraction done.
+Expected<SimulationReport> Simulate(const SimulationRequest& request,
+                                    const std::function<void(double)>& progress = {});
+
+}  // namespace aavio::sim
