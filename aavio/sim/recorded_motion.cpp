@@ -1,5 +1,6 @@
 #include "aavio/sim/recorded_motion.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <cmath>
 
 #include "aavio/common/format.hpp"
@@ -7,18 +8,46 @@
 namespace aavio::sim {
 
 Eigen::Matrix3d DrivingBodyToCamera(const std::vector<geometry::StampedPose>& poses) {
-  Eigen::Vector3d travel = Eigen::Vector3d::Zero(), down = Eigen::Vector3d::Zero();
-  for (std::size_t i = 0; i + 1 < poses.size(); ++i) {
-    const Eigen::Matrix3d& R = poses[i].T_world_body.R;
-    travel += R.transpose() * (poses[i + 1].T_world_body.t - poses[i].T_world_body.t);
-    down += R.transpose() * Eigen::Vector3d(0, 0, -1);
+  // Forward: the mean direction of travel, in the body frame (robust: the car moves forward).
+  Eigen::Vector3d forward = Eigen::Vector3d::Zero();
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (const geometry::StampedPose& p : poses)
+    mean += p.T_world_body.t;
+  mean /= static_cast<double>(poses.size());
+  Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    const Eigen::Vector3d d = poses[i].T_world_body.t - mean;
+    scatter += d * d.transpose();
+    if (i + 1 < poses.size()) {
+      forward += poses[i].T_world_body.R.transpose() *
+                 (poses[i + 1].T_world_body.t - poses[i].T_world_body.t);
+    }
   }
-  const Eigen::Vector3d y = down.normalized();
-  const Eigen::Vector3d z = (travel - travel.dot(y) * y).normalized();
+  forward.normalize();
+  // Vertical axis: the normal of the (nearly level) plane of the path when the path spans one;
+  // for a nearly straight path the plane is undetermined and the body's own axis closest to
+  // vertical is kept (the body's y axis, as camera-like body frames have it).
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(scatter);
+  Eigen::Vector3d vertical = Eigen::Vector3d::UnitY();
+  const Eigen::Vector3d spread = eigen.eigenvalues();  // ascending
+  // The normal is well determined when the path spreads clearly more across (middle
+  // eigenvalue) than out of its plane (smallest): a singular-value ratio above 5.
+  if (spread(1) > 25.0 * spread(0)) {
+    const Eigen::Vector3d normal_world = eigen.eigenvectors().col(0);
+    vertical = Eigen::Vector3d::Zero();
+    for (const geometry::StampedPose& p : poses)
+      vertical += p.T_world_body.R.transpose() * normal_world;
+  }
+  Eigen::Vector3d down = (vertical - vertical.dot(forward) * forward).normalized();
+  // Up or down cannot be told from positions (a left turn seen from above is a right turn seen
+  // from below). Convention: the sign that keeps the camera's y axis on the side of the body's
+  // y axis. The simulator lays the ground on the same side it gives the camera, so a twin is
+  // self-consistent either way; at worst its turns are mirrored.
+  if (down.y() < 0.0) down = -down;
   Eigen::Matrix3d R_body_cam;
-  R_body_cam.col(0) = y.cross(z);
-  R_body_cam.col(1) = y;
-  R_body_cam.col(2) = z;
+  R_body_cam.col(1) = down;
+  R_body_cam.col(2) = forward;
+  R_body_cam.col(0) = down.cross(forward);
   return R_body_cam;
 }
 
@@ -40,16 +69,18 @@ Expected<CameraPath> CameraPathFromRecording(const std::vector<geometry::Stamped
         StrFormat("the start and duration leave fewer than 2 poses (the path covers %.3f s)",
                   NsToSeconds(recorded.back().t_ns - recorded.front().t_ns)));
   }
+  // Whether it is a vehicle, and how its camera sits, is decided on the whole recording: a short
+  // crop (or a stop) says little about either.
   double length = 0.0;
-  for (std::size_t i = 1; i < cropped.size(); ++i) {
-    length += (cropped[i].T_world_body.t - cropped[i - 1].T_world_body.t).norm();
+  for (std::size_t i = 1; i < recorded.size(); ++i) {
+    length += (recorded[i].T_world_body.t - recorded[i - 1].T_world_body.t).norm();
   }
-  const double seconds = NsToSeconds(cropped.back().t_ns - cropped.front().t_ns);
+  const double seconds = NsToSeconds(recorded.back().t_ns - recorded.front().t_ns);
   const bool vehicle = length > 20.0 && length / seconds > 2.0;
   CameraPath path;
   Eigen::Matrix3d R_body_cam = Eigen::Matrix3d::Identity();
   if (mode == "driving" || (mode == "auto" && vehicle)) {
-    R_body_cam = DrivingBodyToCamera(cropped);
+    R_body_cam = DrivingBodyToCamera(recorded);
     path.body_to_camera = StrFormat("driving rule (body to camera rotation %.1f deg)",
                                     geometry::LogSO3(R_body_cam).norm() * 180.0 / M_PI);
   }
@@ -59,7 +90,11 @@ Expected<CameraPath> CameraPathFromRecording(const std::vector<geometry::Stamped
   for (const geometry::StampedPose& p : cropped) {
     path.poses.push_back({p.t_ns, T_first_inv * (p.T_world_body * T_body_cam)});
   }
-  path.gravity_world = T_first.R.transpose() * Eigen::Vector3d(0, 0, -9.81);
+  // Gravity along the camera's +y (ground) axis, as the rule placed it; for the identity
+  // (hand-held recordings) the recorded world is taken as z-up (motion capture).
+  path.gravity_world = (mode == "identity" || R_body_cam.isIdentity())
+                           ? Eigen::Vector3d(T_first.R.transpose() * Eigen::Vector3d(0, 0, -9.81))
+                           : Eigen::Vector3d(9.81 * Eigen::Vector3d::UnitY());
   return path;
 }
 

@@ -2,10 +2,15 @@
 /// Recorded camera paths as simulator input ("twins" of real sequences): cropping, the
 /// body → camera rotation, and expressing the path relative to its first camera pose.
 ///
-/// Recorded worlds are taken as z-up (motion capture, DSEC's GNSS/lidar world). The driving rule
-/// (for vehicles: DSEC's body frame is the camera turned 180° about its optical axis,
-/// shared/data/README.md) picks the camera orientation in the body frame from the motion itself:
-/// camera +z along the mean direction of travel, +y toward the ground.
+/// The driving rule (for vehicles, whose recorded body frame need not be the camera's — DSEC's is
+/// the camera turned about its optical axis, shared/data/README.md) picks the camera orientation
+/// in the body frame from the motion itself: camera +z along the mean direction of travel, +y
+/// along the path plane's normal (or the body's own vertical axis on a straight path). Which
+/// side of the plane is "down" is not observable from positions: the sign is a convention
+/// (DrivingBodyToCamera), and the simulator builds the ground on that side, so the twin is
+/// consistent. Gravity then lies along the first camera's +y.
+///
+/// Hand-held recordings (identity) are taken as z-up worlds (motion capture) for gravity.
 
 #include <string>
 #include <vector>
@@ -24,7 +29,8 @@ struct CameraPath {
 /// R_body_cam of the driving rule.
 Eigen::Matrix3d DrivingBodyToCamera(const std::vector<geometry::StampedPose>& poses);
 
-/// `mode`: identity | driving | auto (driving for paths longer than 20 m at more than 2 m/s).
+/// `mode`: identity | driving | auto (driving for recordings longer than 20 m at more than
+/// 2 m/s). The vehicle test and the rule use the whole recording; the crop follows.
 Expected<CameraPath> CameraPathFromRecording(const std::vector<geometry::StampedPose>& recorded,
                                              double start_s, double duration_s,
                                              const std::string& mode);
