@@ -43,6 +43,8 @@ void Scene::Transform(const geometry::RigidTransform& T) {
 }
 
 void Scene::Build() {
+  for (Quad& q : quads_)
+    q.texture.Prepare();
   const std::size_t n = quads_.size();
   lo_.resize(n);
   hi_.resize(n);

@@ -29,8 +29,16 @@ double Mix(double a, double b, double t) {
 
 }  // namespace
 
+void Texture::Prepare() {
+  cos_ = std::cos(angle_rad);
+  sin_ = std::sin(angle_rad);
+  prepared_angle_ = angle_rad;
+}
+
 double Texture::Albedo(double u_m, double v_m, double footprint_m) const {
-  const double c = std::cos(angle_rad), s = std::sin(angle_rad);
+  const bool prepared = prepared_angle_ == angle_rad;
+  const double c = prepared ? cos_ : std::cos(angle_rad);
+  const double s = prepared ? sin_ : std::sin(angle_rad);
   const double x = (c * u_m + s * v_m) / cell_m;  // pattern coordinates, in cells
   const double y = (-s * u_m + c * v_m) / cell_m;
   const double w = std::max(footprint_m / cell_m, 1e-4);
@@ -52,29 +60,29 @@ double Texture::Albedo(double u_m, double v_m, double footprint_m) const {
     case Pattern::kTiles: {
       const double i = std::floor(x), j = std::floor(y);
       const double fx = x - i, fy = y - j;
-      // Albedo of this tile, blended towards each neighbour across the edge.
-      const double self =
-          albedo(Hash01(static_cast<std::int64_t>(i), static_cast<std::int64_t>(j), seed));
-      const double left =
-          albedo(Hash01(static_cast<std::int64_t>(i) - 1, static_cast<std::int64_t>(j), seed));
-      const double right =
-          albedo(Hash01(static_cast<std::int64_t>(i) + 1, static_cast<std::int64_t>(j), seed));
-      const double down =
-          albedo(Hash01(static_cast<std::int64_t>(i), static_cast<std::int64_t>(j) - 1, seed));
-      const double up =
-          albedo(Hash01(static_cast<std::int64_t>(i), static_cast<std::int64_t>(j) + 1, seed));
-      double value = self;
-      value = Mix(fx < 0.5 ? left : right, value, Coverage(std::min(fx, 1.0 - fx), w));
-      value = Mix(fy < 0.5 ? down : up, value, Coverage(std::min(fy, 1.0 - fy), w));
+      const auto ii = static_cast<std::int64_t>(i), jj = static_cast<std::int64_t>(j);
+      double value = albedo(Hash01(ii, jj, seed));
+      // Neighbouring tiles matter only where the footprint reaches across an edge.
+      const double dx = std::min(fx, 1.0 - fx), dy = std::min(fy, 1.0 - fy);
+      if (dx < 0.5 * w) {
+        const double other = albedo(Hash01(ii + (fx < 0.5 ? -1 : 1), jj, seed));
+        value = Mix(other, value, Coverage(dx, w));
+      }
+      if (dy < 0.5 * w) {
+        const double other = albedo(Hash01(ii, jj + (fy < 0.5 ? -1 : 1), seed));
+        value = Mix(other, value, Coverage(dy, w));
+      }
       return value;
     }
     case Pattern::kStripes: {
       const double j = std::floor(y);
       const double fy = y - j;
       const double self = albedo(Hash01(0, static_cast<std::int64_t>(j), seed));
+      const double d = std::min(fy, 1.0 - fy);
+      if (d >= 0.5 * w) return self;
       const double other =
           albedo(Hash01(0, static_cast<std::int64_t>(j) + (fy < 0.5 ? -1 : 1), seed));
-      return Mix(other, self, Coverage(std::min(fy, 1.0 - fy), w));
+      return Mix(other, self, Coverage(d, w));
     }
     case Pattern::kBlobs: {
       // One disc per cell, jittered centre and radius; the nearest cells are checked.

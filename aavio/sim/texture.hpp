@@ -6,6 +6,7 @@
 /// texture's seed, so a scene is deterministic from its seed.
 
 #include <cstdint>
+#include <limits>
 
 namespace aavio::sim {
 
@@ -26,7 +27,14 @@ struct Texture {
   std::uint64_t seed = 0;
 
   /// Albedo in (0, 1] at surface coordinates (u, v) [m], box-filtered over a footprint [m].
+  /// Reads only: safe to call from several threads.
   double Albedo(double u_m, double v_m, double footprint_m) const;
+
+  /// Caches cos/sin of angle_rad (Scene::Build calls it); Albedo works without it, slower.
+  void Prepare();
+
+ private:
+  double cos_ = 1.0, sin_ = 0.0, prepared_angle_ = std::numeric_limits<double>::quiet_NaN();
 };
 
 }  // namespace aavio::sim
