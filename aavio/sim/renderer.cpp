@@ -139,15 +139,19 @@ void Renderer::Render(const Scene& scene, const geometry::RigidTransform& T_worl
     }
   }
   // Texture once per pixel, box-filtered over the footprint (stretched at grazing angles).
+  normals_.resize(quads.size());
+  for (std::size_t q = 0; q < quads.size(); ++q) {
+    normals_[q] = T_cam_world.R * quads[q].edge_u.cross(quads[q].edge_v).normalized();
+  }
   for (std::size_t i = 0; i < n; ++i) {
     if (quad_of_[i] < 0) continue;
-    const Quad& quad = quads[static_cast<std::size_t>(quad_of_[i])];
+    const std::size_t q = static_cast<std::size_t>(quad_of_[i]);
+    const Quad& quad = quads[q];
     const double x = static_cast<double>(nx_[i]), y = static_cast<double>(ny_[i]);
     const double ray_norm = std::sqrt(x * x + y * y + 1.0);
     const double z = static_cast<double>(zbuf_[i]);
-    const Eigen::Vector3d normal_w = quad.edge_u.cross(quad.edge_v).normalized();
-    const Eigen::Vector3d ray_w = T_world_cam.R * Eigen::Vector3d(x, y, 1.0) / ray_norm;
-    const double cos_incidence = std::abs(normal_w.dot(ray_w));
+    const Eigen::Vector3d& normal = normals_[q];
+    const double cos_incidence = std::abs(normal.x() * x + normal.y() * y + normal.z()) / ray_norm;
     const double footprint = z * ray_norm * pixel_angle_ / std::max(cos_incidence, 0.1);
     out->intensity[i] = static_cast<float>(quad.texture.Albedo(
         static_cast<double>(tex_u_[i]), static_cast<double>(tex_v_[i]), footprint));

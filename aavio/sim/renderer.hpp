@@ -48,6 +48,7 @@ class Renderer {
   mutable std::vector<float> zbuf_;
   mutable std::vector<std::int32_t> quad_of_;
   mutable std::vector<float> tex_u_, tex_v_;
+  mutable std::vector<Eigen::Vector3d> normals_;  // per quad, camera frame, unit
 };
 
 }  // namespace aavio::sim
