@@ -11,12 +11,10 @@
 #include <thread>
 
 #include "aavio/common/format.hpp"
-#include "aavio/io/bag_writer.hpp"
 #include "aavio/io/calibration.hpp"
 #include "aavio/io/config_yaml.hpp"
-#include "aavio/io/dsec_h5_writer.hpp"
 #include "aavio/io/sequence.hpp"
-#include "aavio/io/text_streams.hpp"
+#include "aavio/io/sequence_writer.hpp"
 #include "aavio/io/trajectory_io.hpp"
 #include "aavio/sim/event_generator.hpp"
 #include "aavio/sim/imu_synthesis.hpp"
@@ -83,94 +81,6 @@ geometry::RigidTransform SceneFrame(const Motion& motion) {
   R.col(2) = z;
   return {R, Eigen::Vector3d::Zero()};
 }
-
-/// The event output of one format.
-class EventSink {
- public:
-  virtual ~EventSink() = default;
-  virtual Status Write(bool left, const std::vector<events::Event>& events) = 0;
-  virtual Status Finish(const std::vector<imu::ImuSample>& imu,
-                        const std::vector<geometry::StampedPose>& poses,
-                        io::SequenceDescription* d) = 0;
-};
-
-class FilesSink final : public EventSink {
- public:
-  static Expected<std::unique_ptr<FilesSink>> Create(const fs::path& dir, bool h5) {
-    auto sink = std::make_unique<FilesSink>();
-    sink->dir_ = dir;
-    for (int side = 0; side < 2; ++side) {
-      const fs::path sub = dir / "events" / (side == 0 ? "left" : "right");
-      fs::create_directories(sub);
-      sink->paths_[side] = (sub / (h5 ? "events.h5" : "events.txt")).string();
-      if (h5) {
-        auto w = io::DsecH5EventWriter::Create(sink->paths_[side]);
-        if (!w) return w.status();
-        sink->h5_[side] = std::move(*w);
-      } else {
-        auto w = io::TextEventWriter::Create(sink->paths_[side]);
-        if (!w) return w.status();
-        sink->txt_[side] = std::move(*w);
-      }
-    }
-    return sink;
-  }
-  Status Write(bool left, const std::vector<events::Event>& events) override {
-    const int side = left ? 0 : 1;
-    return h5_[side] ? h5_[side]->Write(events) : txt_[side]->Write(events);
-  }
-  Status Finish(const std::vector<imu::ImuSample>& imu, const std::vector<geometry::StampedPose>&,
-                io::SequenceDescription* d) override {
-    for (int side = 0; side < 2; ++side) {
-      AAVIO_RETURN_IF_ERROR(h5_[side] ? h5_[side]->Close() : txt_[side]->Close());
-    }
-    const io::SourceFormat format = h5_[0] ? io::SourceFormat::kDsecH5 : io::SourceFormat::kText;
-    d->left = {format, paths_[0], "", {}};
-    d->right = {format, paths_[1], "", {}};
-    const std::string imu_path = (dir_ / "imu.txt").string();
-    AAVIO_RETURN_IF_ERROR(io::WriteImuText(imu_path, imu));
-    d->imu = io::SourceSpec{io::SourceFormat::kText, imu_path, "", io::ImuTextLayout::kEcd};
-    return Status::Ok();
-  }
-
- private:
-  fs::path dir_;
-  std::string paths_[2];
-  std::unique_ptr<io::DsecH5EventWriter> h5_[2];
-  std::unique_ptr<io::TextEventWriter> txt_[2];
-};
-
-class BagSink final : public EventSink {
- public:
-  static Expected<std::unique_ptr<BagSink>> Create(const fs::path& dir, int width, int height) {
-    auto sink = std::make_unique<BagSink>();
-    sink->path_ = (dir / "events.bag").string();
-    auto w = io::BagWriter::Create(sink->path_, {.width = width, .height = height});
-    if (!w) return w.status();
-    sink->writer_ = std::move(*w);
-    return sink;
-  }
-  Status Write(bool left, const std::vector<events::Event>& events) override {
-    return writer_->WriteEvents(left ? "/davis/left/events" : "/davis/right/events", events);
-  }
-  Status Finish(const std::vector<imu::ImuSample>& imu,
-                const std::vector<geometry::StampedPose>& poses,
-                io::SequenceDescription* d) override {
-    for (const imu::ImuSample& s : imu)
-      AAVIO_RETURN_IF_ERROR(writer_->WriteImu("/davis/left/imu", s));
-    for (const geometry::StampedPose& p : poses)
-      AAVIO_RETURN_IF_ERROR(writer_->WritePose("/gt/pose", p));
-    AAVIO_RETURN_IF_ERROR(writer_->Close());
-    d->left = {io::SourceFormat::kBag, path_, "/davis/left/events", {}};
-    d->right = {io::SourceFormat::kBag, path_, "/davis/right/events", {}};
-    d->imu = io::SourceSpec{io::SourceFormat::kBag, path_, "/davis/left/imu", {}};
-    return Status::Ok();
-  }
-
- private:
-  std::string path_;
-  std::unique_ptr<io::BagWriter> writer_;
-};
 
 /// Smallest depths in view (2nd percentile) bound the optical flow for the adaptive step.
 double NearDepth(const std::vector<float>& depth) {
@@ -269,7 +179,7 @@ Expected<SimulationReport> Simulate(const SimulationRequest& request,
                                     const std::function<void(double)>& progress) {
   const auto wall_start = std::chrono::steady_clock::now();
   if (request.out_dir.empty()) return InvalidArgument("an output folder is needed (--out)");
-  if (request.format != "h5" && request.format != "bag" && request.format != "txt") {
+  if (!io::ParseSequenceFormat(request.format).ok()) {
     return InvalidArgument("--format must be h5, bag or txt, got '" + request.format + "'");
   }
   Expected<SimulationPreset> preset = GetSimulationPreset(request.preset);
@@ -310,16 +220,12 @@ Expected<SimulationReport> Simulate(const SimulationRequest& request,
       io::WriteEsvoCalibration((out / "calibration").string(), *rig, "aavio_" + preset->name));
   AAVIO_RETURN_IF_ERROR(WriteScene((out / "scene.txt").string(), scene));
 
-  std::unique_ptr<EventSink> sink;
-  if (request.format == "bag") {
-    auto s = BagSink::Create(out, rig->width(), rig->height());
-    if (!s) return s.status();
-    sink = std::move(*s);
-  } else {
-    auto s = FilesSink::Create(out, request.format == "h5");
-    if (!s) return s.status();
-    sink = std::move(*s);
-  }
+  Expected<io::SequenceFormat> format = io::ParseSequenceFormat(request.format);
+  if (!format) return format.status();
+  Expected<std::unique_ptr<io::SequenceWriter>> writer = io::SequenceWriter::Create(
+      request.out_dir, {.format = *format, .width = rig->width(), .height = rig->height()});
+  if (!writer) return writer.status();
+  io::SequenceWriter& sink = **writer;
 
   // Camera poses: the spline is the rectified left camera; raw left and right follow.
   const geometry::RigidTransform T_rect_left(rig->R_rect_left_left(), Eigen::Vector3d::Zero());
@@ -408,7 +314,7 @@ Expected<SimulationReport> Simulate(const SimulationRequest& request,
     step(0);
     right_thread.join();
     for (int side = 0; side < 2; ++side)
-      AAVIO_RETURN_IF_ERROR(sink->Write(side == 0, batch[side]));
+      AAVIO_RETURN_IF_ERROR(sink.WriteEvents(side == 0, batch[side]));
     for (const events::Event& e : batch[0])
       ++pixel_counts[static_cast<std::size_t>(e.y) * rig->width() + e.x];
     report.events_left += static_cast<std::int64_t>(batch[0].size());
@@ -440,14 +346,13 @@ Expected<SimulationReport> Simulate(const SimulationRequest& request,
   const TimeNs pose_step = SecondsToNs(1.0 / preset->pose_rate_hz);
   for (TimeNs tp = t_begin; tp <= t_end; tp += pose_step)
     gt.push_back({tp, spline->Pose(tp)});
-  AAVIO_RETURN_IF_ERROR(io::WriteTumTrajectory((out / "groundtruth.txt").string(), gt));
+  AAVIO_RETURN_IF_ERROR(sink.WriteImu(*imu));
+  AAVIO_RETURN_IF_ERROR(sink.WritePoses(gt));
 
   io::SequenceDescription d;
   d.name = fs::absolute(out).lexically_normal().filename().string();
   d.calibration = (out / "calibration").string();
-  AAVIO_RETURN_IF_ERROR(sink->Finish(*imu, gt, &d));
-  d.gt_trajectory =
-      io::SourceSpec{io::SourceFormat::kText, (out / "groundtruth.txt").string(), "", {}};
+  AAVIO_RETURN_IF_ERROR(sink.Close(&d));
   d.gt_depth = (out / "depth").string();
   report.sequence_yaml = (out / "sequence.yaml").string();
   AAVIO_RETURN_IF_ERROR(io::WriteSequenceYaml(report.sequence_yaml, d));
