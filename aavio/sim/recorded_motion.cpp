@@ -90,11 +90,10 @@ Expected<CameraPath> CameraPathFromRecording(const std::vector<geometry::Stamped
   for (const geometry::StampedPose& p : cropped) {
     path.poses.push_back({p.t_ns, T_first_inv * (p.T_world_body * T_body_cam)});
   }
-  // Gravity along the camera's +y (ground) axis, as the rule placed it; for the identity
-  // (hand-held recordings) the recorded world is taken as z-up (motion capture).
-  path.gravity_world = (mode == "identity" || R_body_cam.isIdentity())
-                           ? Eigen::Vector3d(T_first.R.transpose() * Eigen::Vector3d(0, 0, -9.81))
-                           : Eigen::Vector3d(9.81 * Eigen::Vector3d::UnitY());
+  // Gravity along the first camera's +y: the driving rule put the ground there, and a hand-held
+  // camera starts upright (recorded worlds need not be gravity-aligned: the ESVO2 ground-truth
+  // worlds start at the first pose).
+  path.gravity_world = 9.81 * Eigen::Vector3d::UnitY();
   return path;
 }
 

@@ -8,9 +8,8 @@
 /// along the path plane's normal (or the body's own vertical axis on a straight path). Which
 /// side of the plane is "down" is not observable from positions: the sign is a convention
 /// (DrivingBodyToCamera), and the simulator builds the ground on that side, so the twin is
-/// consistent. Gravity then lies along the first camera's +y.
-///
-/// Hand-held recordings (identity) are taken as z-up worlds (motion capture) for gravity.
+/// consistent. Gravity lies along the first camera's +y: the ground side for vehicles, and the
+/// upright start of a hand-held camera (recorded worlds need not be gravity-aligned).
 
 #include <string>
 #include <vector>
