@@ -1,4 +1,6 @@
 // `aavio simulate`: a stereo event camera + IMU sequence with exact ground truth (design.md §5).
+#include <unistd.h>
+
 #include <CLI/CLI.hpp>
 #include <ostream>
 
@@ -11,7 +13,9 @@ namespace aavio::cli {
 
 namespace {
 
-int RunSimulate(const sim::SimulationRequest& request, bool quiet, Context& ctx) {
+int RunSimulate(const sim::SimulationRequest& request, bool quiet_flag, Context& ctx) {
+  // Progress only where someone watches it: on a terminal, and not with --quiet.
+  const bool quiet = quiet_flag || !isatty(STDERR_FILENO);
   int last_percent = -1;
   auto progress = [&](double fraction) {
     const int percent = static_cast<int>(fraction * 100.0);
