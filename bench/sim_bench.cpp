@@ -47,7 +47,7 @@ void BM_EventStepDsec(benchmark::State& state) {
   for (float& v : a)
     v = value(rng);
   for (std::size_t i = 0; i < b.size(); ++i)
-    b[i] = i % 10 == 0 ? value(rng) : a[i];  // 10 % change
+    b[i] = i % 10 == 0 ? 1.3f * a[i] : a[i];  // 10 % of pixels cross one threshold (~1 px motion)
   generator.Reset(a, 0);
   std::vector<events::Event> out;
   TimeNs t = 0;

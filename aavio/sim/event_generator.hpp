@@ -60,6 +60,7 @@ class EventGenerator {
   std::mt19937_64 rng_;
   std::vector<float> reference_;  // log intensity at the last event
   std::vector<float> last_log_;   // log intensity at the previous render
+  std::vector<float> log_;        // log intensity of the current render (scratch)
   std::vector<float> threshold_on_, threshold_off_;
   std::vector<TimeNs> last_event_ns_;
   std::vector<std::uint32_t> hot_pixels_;

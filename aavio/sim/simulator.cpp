@@ -147,13 +147,15 @@ cv::Mat TopView(const Scene& scene, const std::vector<geometry::StampedPose>& pa
     const Eigen::Vector3d c = T * p.T_world_body.t;
     points.emplace_back(c.x(), c.z());
   }
-  double x0 = -5, x1 = 5, z0 = -5, z1 = 5;
+  // The path's bounding box with a margin that shows the scene around it: 4 m for a room,
+  // up to 15 m (a street canyon's facades) for long paths.
+  double x0 = 0, x1 = 0, z0 = 0, z1 = 0;
   for (const cv::Point2d& p : points) {
-    x0 = std::min(x0, p.x - 10);
-    x1 = std::max(x1, p.x + 10);
-    z0 = std::min(z0, p.y - 10);
-    z1 = std::max(z1, p.y + 10);
+    x0 = std::min(x0, p.x), x1 = std::max(x1, p.x);
+    z0 = std::min(z0, p.y), z1 = std::max(z1, p.y);
   }
+  const double margin = std::clamp(0.3 * std::max(x1 - x0, z1 - z0), 4.0, 15.0);
+  x0 -= margin, x1 += margin, z0 -= margin, z1 += margin;
   const double scale = 800.0 / std::max(x1 - x0, z1 - z0);
   auto px = [&](double x, double z) {
     return cv::Point(static_cast<int>((x - x0) * scale), static_cast<int>((z1 - z) * scale));
