@@ -31,7 +31,8 @@ TEST(FastMath, ExpMatchesStdExpOnNonPositiveInputs) {
   for (int i = 0; i <= 870000; ++i) {
     const float x = -static_cast<float>(i) * 1e-4f;
     const double expected = std::exp(static_cast<double>(x));
-    worst = std::max(worst, std::abs(static_cast<double>(FastExpNonPositive(x)) - expected) / expected);
+    worst =
+        std::max(worst, std::abs(static_cast<double>(FastExpNonPositive(x)) - expected) / expected);
   }
   EXPECT_LT(worst, 3e-7);
   EXPECT_EQ(FastExpNonPositive(0.0f), 1.0f);

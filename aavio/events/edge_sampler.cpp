@@ -1,0 +1,143 @@
+#include "aavio/events/edge_sampler.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+#include <random>
+
+namespace aavio::events {
+namespace {
+
+// The rectified position of raw pixel (x, y) if it lands on a valid rectified pixel.
+bool Rectified(const geometry::RectificationMaps& maps, int x, int y, float* u, float* v) {
+  const cv::Vec2f r = maps.event_lut.at<cv::Vec2f>(y, x);
+  if (!(r[0] >= 0.0f && r[1] >= 0.0f)) return false;  // also rejects NaN
+  const int ui = static_cast<int>(r[0] + 0.5f), vi = static_cast<int>(r[1] + 0.5f);
+  if (ui >= maps.valid_mask.cols || vi >= maps.valid_mask.rows || !maps.IsValid(ui, vi))
+    return false;
+  *u = r[0];
+  *v = r[1];
+  return true;
+}
+
+// Integer in [0, n), the same on every platform (std distributions are not); the modulo bias is
+// below n / 2^64.
+std::size_t Below(std::mt19937_64& rng, std::size_t n) {
+  return static_cast<std::size_t>(rng() % n);
+}
+
+}  // namespace
+
+std::vector<int> BlockQuotas(const std::vector<int>& candidates, const EdgeSamplingConfig& config) {
+  const std::size_t nb = candidates.size();
+  std::vector<int> quota(nb, 0), cap(nb, 0);
+  std::int64_t total = 0;
+  for (const int n : candidates)
+    total += n;
+  if (total == 0) return quota;
+  const double budget = config.num_points;
+  std::int64_t given = 0;
+  for (std::size_t b = 0; b < nb; ++b) {
+    cap[b] = static_cast<int>(std::floor(config.block_cap_fraction * candidates[b]));
+    if (cap[b] == 0 && candidates[b] > 0) cap[b] = 1;  // a lone pixel may still be taken
+    const int proportional = static_cast<int>(std::floor(
+        config.proportional_share * budget * candidates[b] / static_cast<double>(total)));
+    quota[b] = std::min(proportional, cap[b]);
+    given += quota[b];
+  }
+  // The rest, evenly over the blocks with room, until the budget is met or all are full.
+  std::int64_t left = config.num_points - given;
+  while (left > 0) {
+    std::int64_t with_room = 0;
+    for (std::size_t b = 0; b < nb; ++b)
+      with_room += quota[b] < cap[b] ? 1 : 0;
+    if (with_room == 0) break;
+    const std::int64_t share = std::max<std::int64_t>(1, left / with_room);
+    for (std::size_t b = 0; b < nb && left > 0; ++b) {
+      const std::int64_t add = std::min<std::int64_t>({share, cap[b] - quota[b], left});
+      if (add <= 0) continue;
+      quota[b] += static_cast<int>(add);
+      left -= add;
+    }
+  }
+  return quota;
+}
+
+std::vector<EdgeSample> SampleAaMap(const AaMap& map, const geometry::RectificationMaps& maps,
+                                    const EdgeSamplingConfig& config, std::uint64_t seed) {
+  const int width = map.counts.cols;
+  const std::uint8_t* counts = map.counts.ptr<std::uint8_t>();
+  // Candidates per block: active pixels that rectify onto valid pixels.
+  std::vector<std::vector<EdgeSample>> candidates(map.blocks.size());
+  std::vector<int> sizes(map.blocks.size(), 0);
+  for (std::size_t b = 0; b < map.blocks.size(); ++b) {
+    for (const std::uint32_t pixel : map.blocks[b].active) {
+      EdgeSample s;
+      s.x = static_cast<std::uint16_t>(pixel % static_cast<std::uint32_t>(width));
+      s.y = static_cast<std::uint16_t>(pixel / static_cast<std::uint32_t>(width));
+      if (!Rectified(maps, s.x, s.y, &s.u, &s.v)) continue;
+      s.count = counts[pixel];
+      candidates[b].push_back(s);
+    }
+    sizes[b] = static_cast<int>(candidates[b].size());
+  }
+  const std::vector<int> quota = BlockQuotas(sizes, config);
+
+  std::mt19937_64 rng(seed);
+  std::vector<EdgeSample> samples;
+  samples.reserve(static_cast<std::size_t>(config.num_points));
+  std::vector<EdgeSample> tied;
+  for (std::size_t b = 0; b < candidates.size(); ++b) {
+    const int k = quota[b];
+    if (k <= 0) continue;
+    // The k highest counts: all above the threshold count c*, and a random part of those at c*.
+    std::array<int, 256> histogram{};
+    for (const EdgeSample& s : candidates[b])
+      ++histogram[s.count];
+    int c_star = 255, above = 0;
+    while (above + histogram[c_star] < k)
+      above += histogram[c_star--];
+    tied.clear();
+    for (const EdgeSample& s : candidates[b]) {
+      if (s.count > c_star) {
+        samples.push_back(s);
+      } else if (s.count == c_star) {
+        tied.push_back(s);
+      }
+    }
+    const std::size_t need = static_cast<std::size_t>(k - above);
+    for (std::size_t i = 0; i < need; ++i) {  // partial Fisher–Yates
+      std::swap(tied[i], tied[i + Below(rng, tied.size() - i)]);
+      samples.push_back(tied[i]);
+    }
+  }
+  return samples;
+}
+
+std::vector<EdgeSample> SelectNewestEvents(std::span<const Event> events, TimeNs t_ns,
+                                           const geometry::RectificationMaps& maps,
+                                           const EdgeSamplingConfig& config) {
+  const TimeNs window_ns = SecondsToNs(config.newest_window_ms * 1e-3);
+  std::vector<EdgeSample> samples;
+  for (auto it = events.rbegin(); it != events.rend(); ++it) {
+    if (it->t_ns > t_ns) continue;
+    if (it->t_ns <= t_ns - window_ns || static_cast<int>(samples.size()) >= config.num_points) {
+      break;
+    }
+    EdgeSample s;
+    s.x = it->x, s.y = it->y, s.count = 1;
+    if (Rectified(maps, s.x, s.y, &s.u, &s.v)) samples.push_back(s);
+  }
+  if (!config.denoise || samples.empty()) return samples;
+  cv::Mat image(maps.event_lut.rows, maps.event_lut.cols, CV_8UC1, cv::Scalar(0));
+  for (const EdgeSample& s : samples)
+    image.at<std::uint8_t>(s.y, s.x) = 255;
+  cv::Mat filtered;
+  cv::medianBlur(image, filtered, 3);
+  std::erase_if(samples,
+                [&](const EdgeSample& s) { return filtered.at<std::uint8_t>(s.y, s.x) == 0; });
+  return samples;
+}
+
+}  // namespace aavio::events

@@ -1,0 +1,39 @@
+#pragma once
+/// Edge pixels for mapping (algorithm.md §3.4–3.5): a budget of pixels from the AA map, spread
+/// over the grid of blocks and favouring high counts — or, as the baseline, ESVO's newest events.
+/// Samples are taken in raw coordinates and rectified once through the event LUT; pixels whose
+/// rectified position is outside the image or the valid mask are never offered.
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "aavio/events/adaptive_accumulation.hpp"
+#include "aavio/events/events_config.hpp"
+#include "aavio/geometry/rectification.hpp"
+
+namespace aavio::events {
+
+struct EdgeSample {
+  std::uint16_t x = 0, y = 0;  ///< raw pixel
+  float u = 0.0f, v = 0.0f;    ///< rectified position
+  std::uint16_t count = 0;     ///< AA count (1 for ESVO's events)
+};
+
+/// Per-block quotas (algorithm.md §3.4): `proportional_share`·M in proportion to the blocks'
+/// candidates n_i, each block capped at `block_cap_fraction`·n_i, and what is left of M shared
+/// evenly among the blocks with room, repeatedly, until M is met or every block is at its cap.
+std::vector<int> BlockQuotas(const std::vector<int>& candidates, const EdgeSamplingConfig& config);
+
+/// Samples the AA map: per block its quota of highest-count pixels, ties broken at random from
+/// `seed` (same seed and map → same samples).
+std::vector<EdgeSample> SampleAaMap(const AaMap& map, const geometry::RectificationMaps& maps,
+                                    const EdgeSamplingConfig& config, std::uint64_t seed);
+
+/// ESVO's selection: the newest events of (t − newest_window, t], at most M, one sample each;
+/// with `denoise`, only those whose pixel survives a 3×3 median of their binary image.
+std::vector<EdgeSample> SelectNewestEvents(std::span<const Event> events, TimeNs t_ns,
+                                           const geometry::RectificationMaps& maps,
+                                           const EdgeSamplingConfig& config);
+
+}  // namespace aavio::events

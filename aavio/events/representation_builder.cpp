@@ -1,0 +1,154 @@
+#include "aavio/events/representation_builder.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <limits>
+#include <opencv2/core.hpp>
+
+#include "aavio/events/edge_sampler.hpp"
+#include "aavio/events/ts_images.hpp"
+
+namespace aavio::events {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double MsSince(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+// SplitMix64: a tick's own seed from the run's seed and the tick time.
+std::uint64_t TickSeed(std::uint64_t seed, TimeNs t_ns) {
+  std::uint64_t z = seed ^ (static_cast<std::uint64_t>(t_ns) * 0x9e3779b97f4a7c15ull);
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+  return z ^ (z >> 31);
+}
+
+}  // namespace
+
+RepresentationBuilder::RepresentationBuilder(const geometry::StereoRectification& rectification,
+                                             int width, int height,
+                                             const RepresentationConfig& config, TimeNs epoch_ns)
+    : config_(config),
+      rectification_(rectification),
+      left_{TimeSurface(width, height, epoch_ns),
+            ImageRectifier(rectification.left),
+            {},
+            std::numeric_limits<TimeNs>::min()},
+      right_{TimeSurface(width, height, epoch_ns),
+             ImageRectifier(rectification.right),
+             {},
+             std::numeric_limits<TimeNs>::min()},
+      accumulator_(width, height, config.adaptive_accumulation),
+      last_tick_ns_(std::numeric_limits<TimeNs>::min()) {}
+
+Status RepresentationBuilder::AddEvents(Camera camera, std::span<const Event> events) {
+  CameraState& state = camera == Camera::kLeft ? left_ : right_;
+  for (const Event& e : events) {
+    if (e.t_ns < state.newest_added_ns) {
+      return InvalidArgument(std::string(camera == Camera::kLeft ? "left" : "right") +
+                             " events are not in time order at " + FormatSecondsNs(e.t_ns) +
+                             " s (after " + FormatSecondsNs(state.newest_added_ns) + " s)");
+    }
+    if (e.t_ns <= last_tick_ns_) {
+      return InvalidArgument("an event at " + FormatSecondsNs(e.t_ns) +
+                             " s arrived after the tick at " + FormatSecondsNs(last_tick_ns_) +
+                             " s was built");
+    }
+    state.newest_added_ns = e.t_ns;
+  }
+  state.pending.insert(state.pending.end(), events.begin(), events.end());
+  return Status::Ok();
+}
+
+Status RepresentationBuilder::Consume(CameraState& camera, TimeNs t_ns, bool keep_window) {
+  const auto end = std::upper_bound(camera.pending.begin(), camera.pending.end(), t_ns,
+                                    [](TimeNs t, const Event& e) { return t < e.t_ns; });
+  std::span<const Event> batch(camera.pending.begin(), end);
+  // ICRA's safety valve: of a millisecond with more than k events keep every (n / k + 1)-th.
+  std::vector<Event> thinned;
+  const int k = config_.time_surface.max_events_per_ms;
+  if (k > 0) {
+    for (std::size_t i = 0; i < batch.size();) {
+      const TimeNs bin = batch[i].t_ns / kNsPerMs;
+      std::size_t j = i;
+      while (j < batch.size() && batch[j].t_ns / kNsPerMs == bin)
+        ++j;
+      const std::size_t n = j - i, keep_every = n > static_cast<std::size_t>(k) ? n / k + 1 : 1;
+      for (std::size_t m = i; m < j; m += keep_every)
+        thinned.push_back(batch[m]);
+      i = j;
+    }
+    batch = thinned;
+  }
+  AAVIO_RETURN_IF_ERROR(camera.ts.Insert(batch));
+  if (keep_window) window_.insert(window_.end(), batch.begin(), batch.end());
+  camera.pending.erase(camera.pending.begin(), end);
+  return Status::Ok();
+}
+
+Status RepresentationBuilder::Build(TimeNs t_ns, Observation* out) {
+  if (t_ns <= last_tick_ns_) {
+    return InvalidArgument("ticks must increase: " + FormatSecondsNs(t_ns) + " s after " +
+                           FormatSecondsNs(last_tick_ns_) + " s");
+  }
+  last_tick_ns_ = t_ns;
+  out->t_ns = t_ns;
+
+  // Time surfaces: raw → rectified (bilinear) → median.
+  auto start = Clock::now();
+  AAVIO_RETURN_IF_ERROR(Consume(left_, t_ns, true));
+  AAVIO_RETURN_IF_ERROR(Consume(right_, t_ns, false));
+  const double decay_ms = config_.time_surface.decay_ms;
+  for (CameraState* camera : {&left_, &right_}) {
+    cv::Mat& ts = camera == &left_ ? out->ts_left : out->ts_right;
+    camera->ts.Render(t_ns, decay_ms, &scratch_raw_);
+    camera->rectifier.Rectify(scratch_raw_, &ts);
+    MedianFilterTs(ts, config_.time_surface.median_half_size, &ts);
+  }
+  out->timings.time_surface_ms = MsSince(start);
+
+  start = Clock::now();
+  NegativeTs(out->ts_left, config_.time_surface, &out->negative_ts_left);
+  SobelGradients(out->negative_ts_left, &out->grad_u, &out->grad_v);
+  out->timings.derived_ms = MsSince(start);
+
+  // The recent left events: only what AA and ESVO's selection look at.
+  const double keep_ms =
+      std::max(config_.adaptive_accumulation.window_ms, config_.edge_sampling.newest_window_ms);
+  const TimeNs keep_from = t_ns - SecondsToNs(keep_ms * 1e-3);
+  while (window_begin_ < window_.size() && window_[window_begin_].t_ns <= keep_from)
+    ++window_begin_;
+  if (window_begin_ > window_.size() / 2) {
+    window_.erase(window_.begin(), window_.begin() + static_cast<std::ptrdiff_t>(window_begin_));
+    window_begin_ = 0;
+  }
+  const std::span<const Event> recent(window_.data() + window_begin_,
+                                      window_.size() - window_begin_);
+
+  start = Clock::now();
+  accumulator_.Build(recent, t_ns, &aa_);
+  aa_.counts.copyTo(out->aa_counts_raw);
+  cv::compare(aa_.counts, 0, scratch_binary_, cv::CMP_GT);
+  left_.rectifier.Rectify(scratch_binary_, &out->aa_map);
+  out->aa_window_events = aa_.window_events;
+  out->aa_used_events = aa_.used_events;
+  out->aa_blocks.resize(aa_.blocks.size());
+  for (std::size_t b = 0; b < aa_.blocks.size(); ++b) {
+    const AaBlock& block = aa_.blocks[b];
+    out->aa_blocks[b] = {{}, block.events, block.closed, block.span_ns, block.contrast};
+  }
+  out->timings.aa_ms = MsSince(start);
+
+  start = Clock::now();
+  if (config_.edge_sampling.mode == SamplingMode::kAdaptiveAccumulation) {
+    out->samples =
+        SampleAaMap(aa_, rectification_.left, config_.edge_sampling, TickSeed(config_.seed, t_ns));
+  } else {
+    out->samples = SelectNewestEvents(recent, t_ns, rectification_.left, config_.edge_sampling);
+  }
+  out->timings.sampling_ms = MsSince(start);
+  return Status::Ok();
+}
+
+}  // namespace aavio::events

@@ -1,0 +1,63 @@
+#pragma once
+/// The representation stage of one stereo event camera (design.md §1): events in, one
+/// Observation per tick out — time surfaces of both cameras, the negative TS and its gradients,
+/// the AA map and the edge samples. Synchronous and driven by data time only: the same events
+/// and seed give the same Observation, bit for bit.
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "aavio/common/status.hpp"
+#include "aavio/events/adaptive_accumulation.hpp"
+#include "aavio/events/events_config.hpp"
+#include "aavio/events/observation.hpp"
+#include "aavio/events/rectified_image.hpp"
+#include "aavio/events/time_surface.hpp"
+#include "aavio/geometry/rectification.hpp"
+
+namespace aavio::events {
+
+struct RepresentationConfig {
+  TimeSurfaceConfig time_surface;
+  AdaptiveAccumulationConfig adaptive_accumulation;
+  EdgeSamplingConfig edge_sampling;
+  std::uint64_t seed = 1;
+};
+
+enum class Camera { kLeft, kRight };
+
+class RepresentationBuilder {
+ public:
+  /// `epoch_ns`: a time near the data (the sequence start).
+  RepresentationBuilder(const geometry::StereoRectification& rectification, int width, int height,
+                        const RepresentationConfig& config, TimeNs epoch_ns);
+
+  /// Adds a camera's events in time order (across calls too); they may run past the next tick.
+  Status AddEvents(Camera camera, std::span<const Event> events);
+
+  /// The observation at t_ns: every event up to t_ns must have been added. Ticks increase.
+  Status Build(TimeNs t_ns, Observation* out);
+
+ private:
+  struct CameraState {
+    TimeSurface ts;
+    ImageRectifier rectifier;
+    std::vector<Event> pending;  // added, not yet in the time surface (after the last tick)
+    TimeNs newest_added_ns;
+  };
+  // Moves the pending events up to t_ns into the time surface (and the left window).
+  Status Consume(CameraState& camera, TimeNs t_ns, bool keep_window);
+
+  RepresentationConfig config_;
+  geometry::StereoRectification rectification_;
+  CameraState left_, right_;
+  std::vector<Event> window_;  // recent left events, for AA and ESVO's selection
+  std::size_t window_begin_ = 0;
+  AdaptiveAccumulator accumulator_;
+  AaMap aa_;
+  TimeNs last_tick_ns_;
+  cv::Mat scratch_raw_, scratch_binary_;
+};
+
+}  // namespace aavio::events
