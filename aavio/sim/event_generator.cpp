@@ -64,7 +64,8 @@ void EventGenerator::Step(const std::vector<float>& intensity, TimeNs t_ns,
   // The logarithm in its own loop, which the compiler vectorises (most of a step's cost).
   const std::size_t n = intensity.size();
   log_.resize(n);
-  for (std::size_t i = 0; i < n; ++i) log_[i] = FastLog(intensity[i] + eps);
+  for (std::size_t i = 0; i < n; ++i)
+    log_[i] = FastLog(intensity[i] + eps);
 
   for (std::size_t i = 0; i < n; ++i) {
     const float l0 = last_log_[i];

@@ -16,7 +16,7 @@
 #include "aavio/io/sequence.hpp"
 #include "aavio/io/sequence_writer.hpp"
 #include "aavio/io/trajectory_io.hpp"
-#include "aavio/sim/event_generator.hpp"
+#include "aavio/sim/event_simulation.hpp"
 #include "aavio/sim/imu_synthesis.hpp"
 #include "aavio/sim/motion_spline.hpp"
 #include "aavio/sim/motions.hpp"
@@ -30,69 +30,6 @@ namespace aavio::sim {
 namespace fs = std::filesystem;
 
 namespace {
-
-using Motion = CameraPath;
-
-Expected<Motion> BuildMotion(const SimulationRequest& request, const SimulationPreset& preset) {
-  if (request.trajectory.empty()) {
-    Motion motion;
-    const double duration = request.duration_s.value_or(preset.duration_s);
-    switch (preset.motion) {
-      case MotionKind::kHandHeld:
-        motion.poses = HandHeldMotion(duration, request.seed);
-        break;
-      case MotionKind::kDriving:
-        motion.poses = DrivingMotion(duration, request.seed);
-        break;
-      case MotionKind::kDrone:
-        motion.poses = DroneMotion(duration, request.seed);
-        break;
-    }
-    motion.gravity_world = BuiltInGravity();
-    return motion;
-  }
-  Expected<std::vector<geometry::StampedPose>> recorded = io::ReadTumTrajectory(request.trajectory);
-  if (!recorded) return recorded.status();
-  Expected<CameraPath> path = CameraPathFromRecording(
-      *recorded, request.start_s, request.duration_s.value_or(0.0), request.body_to_camera);
-  if (!path) return path.status().WithContext(request.trajectory);
-  return path;
-}
-
-/// Rotation taking the canonical scene frame (y down, z forward) to the world: y along gravity,
-/// z along the first camera's view projected onto the level plane.
-geometry::RigidTransform SceneFrame(const Motion& motion) {
-  const Eigen::Vector3d y = motion.gravity_world.normalized();
-  // The first camera's view direction, levelled; a camera looking along gravity uses its image
-  // "up" (−y) instead, then its x axis.
-  const Eigen::Matrix3d& R0 = motion.poses.front().T_world_body.R;
-  Eigen::Vector3d z = Eigen::Vector3d::UnitZ();
-  for (const Eigen::Vector3d& candidate :
-       {Eigen::Vector3d(R0.col(2)), Eigen::Vector3d(-R0.col(1)), Eigen::Vector3d(R0.col(0))}) {
-    const Eigen::Vector3d level = candidate - candidate.dot(y) * y;
-    if (level.norm() > 0.3) {
-      z = level.normalized();
-      break;
-    }
-  }
-  Eigen::Matrix3d R;
-  R.col(0) = y.cross(z);
-  R.col(1) = y;
-  R.col(2) = z;
-  return {R, Eigen::Vector3d::Zero()};
-}
-
-/// Smallest depths in view (2nd percentile) bound the optical flow for the adaptive step.
-double NearDepth(const std::vector<float>& depth) {
-  std::vector<float> sample;
-  for (std::size_t i = 0; i < depth.size(); i += 7) {
-    if (depth[i] > 0.0f) sample.push_back(depth[i]);
-  }
-  if (sample.empty()) return 1.0;
-  const std::size_t k = sample.size() / 50;
-  std::nth_element(sample.begin(), sample.begin() + static_cast<std::ptrdiff_t>(k), sample.end());
-  return std::max(0.05, static_cast<double>(sample[k]));
-}
 
 Status WriteScene(const std::string& path, const Scene& scene) {
   std::string text =
@@ -184,101 +121,61 @@ Expected<SimulationReport> Simulate(const SimulationRequest& request,
   if (!io::ParseSequenceFormat(request.format).ok()) {
     return InvalidArgument("--format must be h5, bag or txt, got '" + request.format + "'");
   }
-  Expected<SimulationPreset> preset = GetSimulationPreset(request.preset);
-  if (!preset) return preset.status();
-  Expected<geometry::StereoRig> rig = preset->rig();
-  if (!request.calibration.empty()) {
-    Expected<io::LoadedCalibration> loaded = io::LoadCalibration(request.calibration);
-    if (!loaded) return loaded.status();
-    rig = loaded->rig;
-  }
-  if (!rig) return rig.status();
-  Expected<Motion> motion = BuildMotion(request, *preset);
-  if (!motion) return motion.status();
-  Expected<MotionSpline> spline = MotionSpline::Fit(motion->poses);
-  if (!spline) return spline.status();
-
-  const geometry::RigidTransform T_world_canonical = SceneFrame(*motion);
-  Scene scene;
-  switch (preset->scene) {
-    case SceneKind::kRoom:
-      scene = BuildRoom(request.seed);
-      break;
-    case SceneKind::kHall:
-      scene = BuildHall(request.seed);
-      break;
-    case SceneKind::kStreet:
-      scene =
-          BuildStreet(motion->poses, motion->gravity_world, preset->camera_height_m, request.seed);
-      break;
-  }
-  if (preset->scene != SceneKind::kStreet) scene.Transform(T_world_canonical);
+  Expected<SimulationWorld> built = BuildSimulationWorld(request);
+  if (!built) return built.status();
+  const SimulationWorld& world = *built;
+  const geometry::StereoRig& rig = world.rig;
+  const SimulationPreset& preset = world.preset;
+  const MotionSpline& spline = world.spline;
 
   const fs::path out(request.out_dir);
   std::error_code ec;
   fs::create_directories(out / "depth", ec);
   if (ec) return IoError(request.out_dir + ": cannot create the folder (" + ec.message() + ")");
   AAVIO_RETURN_IF_ERROR(
-      io::WriteEsvoCalibration((out / "calibration").string(), *rig, "aavio_" + preset->name));
-  AAVIO_RETURN_IF_ERROR(WriteScene((out / "scene.txt").string(), scene));
+      io::WriteEsvoCalibration((out / "calibration").string(), rig, "aavio_" + preset.name));
+  AAVIO_RETURN_IF_ERROR(WriteScene((out / "scene.txt").string(), world.scene));
 
   Expected<io::SequenceFormat> format = io::ParseSequenceFormat(request.format);
   if (!format) return format.status();
   Expected<std::unique_ptr<io::SequenceWriter>> writer = io::SequenceWriter::Create(
-      request.out_dir, {.format = *format, .width = rig->width(), .height = rig->height()});
+      request.out_dir, {.format = *format, .width = rig.width(), .height = rig.height()});
   if (!writer) return writer.status();
   io::SequenceWriter& sink = **writer;
 
-  // Camera poses: the spline is the rectified left camera; raw left and right follow.
-  const geometry::RigidTransform T_rect_left(rig->R_rect_left_left(), Eigen::Vector3d::Zero());
-  const geometry::RigidTransform T_left_right = rig->T_right_left().Inverse();
-  const Renderer renderers[2] = {Renderer(rig->left()), Renderer(rig->right())};
-  geometry::CameraIntrinsics rect_in{rig->width(),
-                                     rig->height(),
-                                     rig->focal_px(),
-                                     rig->focal_px(),
-                                     rig->cx_left(),
-                                     rig->cy(),
+  geometry::CameraIntrinsics rect_in{rig.width(),
+                                     rig.height(),
+                                     rig.focal_px(),
+                                     rig.focal_px(),
+                                     rig.cx_left(),
+                                     rig.cy(),
                                      geometry::DistortionModel::kNone,
                                      {}};
   const Renderer depth_renderer(*geometry::CameraModel::Create(rect_in));
-  EventGenerator generators[2] = {
-      EventGenerator(rig->width(), rig->height(), preset->events, request.seed * 2 + 11),
-      EventGenerator(rig->width(), rig->height(), preset->events, request.seed * 2 + 12)};
-  auto camera_pose = [&](int side, TimeNs t) {
-    const geometry::RigidTransform T_world_left = spline->Pose(t) * T_rect_left;
-    return side == 0 ? T_world_left : T_world_left * T_left_right;
-  };
-
-  const TimeNs t_begin = spline->t_begin_ns(), t_end = spline->t_end_ns();
-  RenderedImage images[2];
-  for (int side = 0; side < 2; ++side) {
-    renderers[side].Render(scene, camera_pose(side, t_begin), &images[side]);
-    generators[side].Reset(images[side].intensity, t_begin);
-  }
-  const double f_px = (rig->left().intrinsics().fx + rig->left().intrinsics().fy) / 2.0;
+  StereoEventSimulation simulation(world, request.seed);
+  const TimeNs t_begin = spline.t_begin_ns(), t_end = spline.t_end_ns();
   std::vector<events::Event> batch[2];
-  std::vector<std::int64_t> pixel_counts(static_cast<std::size_t>(rig->width()) * rig->height(), 0);
+  std::vector<std::int64_t> pixel_counts(static_cast<std::size_t>(rig.width()) * rig.height(), 0);
   SimulationReport report;
-  report.body_to_camera = motion->body_to_camera;
+  report.body_to_camera = world.motion.body_to_camera;
 
   // Ground-truth depth: rectified left camera at a fixed rate, as DSEC-style disparity PNGs.
-  const TimeNs depth_step = SecondsToNs(1.0 / preset->depth_rate_hz);
+  const TimeNs depth_step = SecondsToNs(1.0 / preset.depth_rate_hz);
   TimeNs next_depth = t_begin;
   std::string depth_stamps = "# t[s] index\n";
   auto write_depth = [&](TimeNs t) -> Status {
     RenderedImage d;
-    depth_renderer.Render(scene, spline->Pose(t), &d);
-    cv::Mat disparity(rig->height(), rig->width(), CV_16UC1, cv::Scalar(0));
-    cv::Mat depth(rig->height(), rig->width(), CV_32FC1, cv::Scalar(0));
-    const double offset = rig->cx_left() - rig->cx_right();
-    for (int i = 0; i < rig->width() * rig->height(); ++i) {
+    depth_renderer.Render(world.scene, spline.Pose(t), &d);
+    cv::Mat disparity(rig.height(), rig.width(), CV_16UC1, cv::Scalar(0));
+    cv::Mat depth(rig.height(), rig.width(), CV_32FC1, cv::Scalar(0));
+    const double offset = rig.cx_left() - rig.cx_right();
+    for (int i = 0; i < rig.width() * rig.height(); ++i) {
       const float z = d.depth_m[i];
       if (z <= 0.0f) continue;
-      depth.at<float>(i / rig->width(), i % rig->width()) = z;
-      const double disp = rig->focal_px() * rig->baseline_m() / static_cast<double>(z) + offset;
+      depth.at<float>(i / rig.width(), i % rig.width()) = z;
+      const double disp = rig.focal_px() * rig.baseline_m() / static_cast<double>(z) + offset;
       if (disp > 0.0 && disp * 256.0 < 65535.0) {
-        disparity.at<std::uint16_t>(i / rig->width(), i % rig->width()) =
+        disparity.at<std::uint16_t>(i / rig.width(), i % rig.width()) =
             static_cast<std::uint16_t>(std::lround(disp * 256.0));
       }
     }
@@ -289,7 +186,7 @@ Expected<SimulationReport> Simulate(const SimulationRequest& request,
     }
     if (request.preview && report.depth_maps == 0) {
       cv::imwrite((out / "preview" / "gt_depth.png").string(),
-                  DepthColour(d.depth_m, rig->width(), rig->height()));
+                  DepthColour(d.depth_m, rig.width(), rig.height()));
     }
     depth_stamps += FormatSecondsNs(t) + " " + index + "\n";
     ++report.depth_maps;
@@ -301,24 +198,13 @@ Expected<SimulationReport> Simulate(const SimulationRequest& request,
   const TimeNs preview_at = t_begin + (t_end - t_begin) / 2;
   TimeNs t = t_begin;
   while (t < t_end) {
-    // Adaptive step: about one pixel of image motion (ω and v / nearest depth) between renders.
-    const double speed_px =
-        f_px * (spline->AngularVelocity(t).norm() +
-                spline->LinearVelocity(t).norm() / NearDepth(images[0].depth_m));
-    const double dt_s = std::clamp(1.0 / std::max(speed_px, 1e-6), 50e-6, 5e-3);
-    const TimeNs t_next = std::min(t_end, t + SecondsToNs(dt_s));
-    auto step = [&](int side) {
-      renderers[side].Render(scene, camera_pose(side, t_next), &images[side]);
-      batch[side].clear();
-      generators[side].Step(images[side].intensity, t_next, &batch[side]);
-    };
-    std::thread right_thread(step, 1);
-    step(0);
-    right_thread.join();
+    batch[0].clear();
+    batch[1].clear();
+    const TimeNs t_next = simulation.Step(t_end, &batch[0], &batch[1]);
     for (int side = 0; side < 2; ++side)
       AAVIO_RETURN_IF_ERROR(sink.WriteEvents(side == 0, batch[side]));
     for (const events::Event& e : batch[0])
-      ++pixel_counts[static_cast<std::size_t>(e.y) * rig->width() + e.x];
+      ++pixel_counts[static_cast<std::size_t>(e.y) * rig.width() + e.x];
     report.events_left += static_cast<std::int64_t>(batch[0].size());
     report.events_right += static_cast<std::int64_t>(batch[1].size());
     if (request.preview && t_next > preview_at - 20 * kNsPerMs && t <= preview_at) {
@@ -340,14 +226,14 @@ Expected<SimulationReport> Simulate(const SimulationRequest& request,
 
   // IMU through the extrinsic (identity if the calibration has none) and ground-truth poses.
   const geometry::RigidTransform T_imu_rect =
-      rig->T_imu_rect_left().value_or(geometry::RigidTransform());
-  Expected<std::vector<imu::ImuSample>> imu =
-      SynthesizeImu(*spline, T_imu_rect, motion->gravity_world, preset->imu, request.seed * 2 + 13);
+      rig.T_imu_rect_left().value_or(geometry::RigidTransform());
+  Expected<std::vector<imu::ImuSample>> imu = SynthesizeImu(
+      spline, T_imu_rect, world.motion.gravity_world, preset.imu, request.seed * 2 + 13);
   if (!imu) return imu.status();
   std::vector<geometry::StampedPose> gt;
-  const TimeNs pose_step = SecondsToNs(1.0 / preset->pose_rate_hz);
+  const TimeNs pose_step = SecondsToNs(1.0 / preset.pose_rate_hz);
   for (TimeNs tp = t_begin; tp <= t_end; tp += pose_step)
-    gt.push_back({tp, spline->Pose(tp)});
+    gt.push_back({tp, spline.Pose(tp)});
   AAVIO_RETURN_IF_ERROR(sink.WriteImu(*imu));
   AAVIO_RETURN_IF_ERROR(sink.WritePoses(gt));
 
@@ -362,14 +248,16 @@ Expected<SimulationReport> Simulate(const SimulationRequest& request,
   if (request.preview) {
     for (int side = 0; side < 2; ++side) {
       cv::imwrite((out / "preview" / (side == 0 ? "events_left.png" : "events_right.png")).string(),
-                  EventFrame(preview_events[side], rig->width(), rig->height()));
+                  EventFrame(preview_events[side], rig.width(), rig.height()));
     }
-    cv::imwrite((out / "preview" / "top_view.png").string(), TopView(scene, gt, T_world_canonical));
+    cv::imwrite((out / "preview" / "top_view.png").string(),
+                TopView(world.scene, gt, world.T_world_canonical));
   }
 
   report.duration_s = NsToSeconds(t_end - t_begin);
   report.imu_samples = static_cast<std::int64_t>(imu->size());
-  report.noise_events = generators[0].noise_events() + generators[1].noise_events();
+  report.noise_events =
+      simulation.generator(0).noise_events() + simulation.generator(1).noise_events();
   report.mean_rate_ev_s =
       static_cast<double>(report.events_left) / std::max(report.duration_s, 1e-9);
   std::sort(pixel_counts.begin(), pixel_counts.end());

@@ -12,21 +12,9 @@
 #include <string>
 
 #include "aavio/common/status.hpp"
+#include "aavio/sim/world.hpp"
 
 namespace aavio::sim {
-
-struct SimulationRequest {
-  std::string preset = "mini";
-  std::string out_dir;
-  std::string format = "h5";         ///< h5 | bag | txt
-  std::optional<double> duration_s;  ///< default: the preset's (or the whole trajectory)
-  double start_s = 0.0;              ///< offset into a recorded trajectory
-  std::uint64_t seed = 1;
-  std::string trajectory;               ///< TUM file: follow a recorded camera path (a twin)
-  std::string calibration;              ///< ESVO/DSEC calibration replacing the preset's
-  std::string body_to_camera = "auto";  ///< identity | driving | auto (driving rule for cars)
-  bool preview = false;
-};
 
 struct SimulationReport {
   double duration_s = 0.0;

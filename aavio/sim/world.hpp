@@ -1,0 +1,47 @@
+#pragma once
+/// What a simulation is made of, before any event is generated: the preset, the stereo rig, the
+/// camera's motion as a C2 spline, and the scene laid out around it. Shared by `aavio simulate`
+/// and by tests and benchmarks that generate events in memory (design.md §5).
+
+#include <optional>
+#include <string>
+
+#include "aavio/common/status.hpp"
+#include "aavio/geometry/stereo_rig.hpp"
+#include "aavio/sim/motion_spline.hpp"
+#include "aavio/sim/presets.hpp"
+#include "aavio/sim/recorded_motion.hpp"
+#include "aavio/sim/scene.hpp"
+
+namespace aavio::sim {
+
+struct SimulationRequest {
+  std::string preset = "mini";
+  std::string out_dir;
+  std::string format = "h5";         ///< h5 | bag | txt
+  std::optional<double> duration_s;  ///< default: the preset's (or the whole trajectory)
+  double start_s = 0.0;              ///< offset into a recorded trajectory
+  std::uint64_t seed = 1;
+  std::string trajectory;               ///< TUM file: follow a recorded camera path (a twin)
+  std::string calibration;              ///< ESVO/DSEC calibration replacing the preset's
+  std::string body_to_camera = "auto";  ///< identity | driving | auto (driving rule for cars)
+  bool preview = false;
+};
+
+struct SimulationWorld {
+  SimulationPreset preset;
+  geometry::StereoRig rig;
+  CameraPath motion;
+  MotionSpline spline;  ///< the rectified left camera in the world
+  Scene scene;
+  /// The level scene frame (x right, y along gravity, z forward) in the world.
+  geometry::RigidTransform T_world_canonical;
+
+  /// Pose of the raw left (side 0) or raw right (side 1) camera at t_ns.
+  geometry::RigidTransform T_world_camera(int side, TimeNs t_ns) const;
+};
+
+/// Preset (or calibration), motion (built-in or recorded) and scene of a request.
+Expected<SimulationWorld> BuildSimulationWorld(const SimulationRequest& request);
+
+}  // namespace aavio::sim
