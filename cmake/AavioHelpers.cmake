@@ -10,6 +10,9 @@ function(aavio_set_warnings target)
   # Config structs have in-class defaults and are filled with designated initializers
   # ({.width = 640}); the omitted fields keep their defaults on purpose.
   target_compile_options(${target} PRIVATE -Wno-missing-field-initializers)
+  # Lets GCC vectorise loops with a clamp (if-conversion of floating-point code); results are
+  # unchanged (no -ffast-math, no FMA contraction: -std=c++20 keeps -ffp-contract=off).
+  target_compile_options(${target} PRIVATE -fno-trapping-math)
   # GCC 12 warns falsely on `"literal" + std::string&&` at -O2 (GCC bug 105651).
   if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU" AND CMAKE_CXX_COMPILER_VERSION VERSION_LESS 13)
     target_compile_options(${target} PRIVATE -Wno-restrict)

@@ -4,6 +4,7 @@
 // are library calls it cannot). Pure arithmetic on IEEE-754 floats: the same input gives the same
 // bits on every x86-64 / AArch64 build without -ffast-math, so results stay deterministic.
 
+#include <algorithm>
 #include <bit>
 #include <cstdint>
 
@@ -27,7 +28,7 @@ inline float FastLog(float x) {
 /// e^x for x in [-87, 0] (decays: time surfaces, weights); |error| < 3e-7 relative to std::exp.
 /// Inputs below -87 give e^-87 (≈ 1.6e-38).
 inline float FastExpNonPositive(float x) {
-  if (x < -87.0f) x = -87.0f;
+  x = std::max(x, -87.0f);
   // e^x = 2^k · e^r, k = round(x / ln 2), |r| ≤ ln2 / 2; e^r by a degree-6 Taylor polynomial.
   const float kf = static_cast<float>(static_cast<int>(x * 1.4426950409f - 0.5f));
   // Cody–Waite: ln 2 split so that kf · ln2_hi is exact and r keeps its accuracy.

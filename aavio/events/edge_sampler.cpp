@@ -11,11 +11,8 @@ namespace {
 
 // The rectified position of raw pixel (x, y) if it lands on a valid rectified pixel.
 bool Rectified(const geometry::RectificationMaps& maps, int x, int y, float* u, float* v) {
+  if (maps.raw_valid.at<std::uint8_t>(y, x) == 0) return false;
   const cv::Vec2f r = maps.event_lut.at<cv::Vec2f>(y, x);
-  if (!(r[0] >= 0.0f && r[1] >= 0.0f)) return false;  // also rejects NaN
-  const int ui = static_cast<int>(r[0] + 0.5f), vi = static_cast<int>(r[1] + 0.5f);
-  if (ui >= maps.valid_mask.cols || vi >= maps.valid_mask.rows || !maps.IsValid(ui, vi))
-    return false;
   *u = r[0];
   *v = r[1];
   return true;
@@ -68,17 +65,15 @@ std::vector<EdgeSample> SampleAaMap(const AaMap& map, const geometry::Rectificat
                                     const EdgeSamplingConfig& config, std::uint64_t seed) {
   const int width = map.counts.cols;
   const std::uint8_t* counts = map.counts.ptr<std::uint8_t>();
-  // Candidates per block: active pixels that rectify onto valid pixels.
-  std::vector<std::vector<EdgeSample>> candidates(map.blocks.size());
+  const std::uint8_t* valid = maps.raw_valid.ptr<std::uint8_t>();
+  // Candidates per block: active pixels that rectify onto valid pixels (indices only; samples
+  // are made for the chosen ones).
+  std::vector<std::vector<std::uint32_t>> candidates(map.blocks.size());
   std::vector<int> sizes(map.blocks.size(), 0);
   for (std::size_t b = 0; b < map.blocks.size(); ++b) {
+    candidates[b].reserve(map.blocks[b].active.size());
     for (const std::uint32_t pixel : map.blocks[b].active) {
-      EdgeSample s;
-      s.x = static_cast<std::uint16_t>(pixel % static_cast<std::uint32_t>(width));
-      s.y = static_cast<std::uint16_t>(pixel / static_cast<std::uint32_t>(width));
-      if (!Rectified(maps, s.x, s.y, &s.u, &s.v)) continue;
-      s.count = counts[pixel];
-      candidates[b].push_back(s);
+      if (valid[pixel] != 0) candidates[b].push_back(pixel);
     }
     sizes[b] = static_cast<int>(candidates[b].size());
   }
@@ -87,29 +82,39 @@ std::vector<EdgeSample> SampleAaMap(const AaMap& map, const geometry::Rectificat
   std::mt19937_64 rng(seed);
   std::vector<EdgeSample> samples;
   samples.reserve(static_cast<std::size_t>(config.num_points));
-  std::vector<EdgeSample> tied;
+  auto take = [&](std::uint32_t pixel) {
+    EdgeSample s;
+    s.x = static_cast<std::uint16_t>(pixel % static_cast<std::uint32_t>(width));
+    s.y = static_cast<std::uint16_t>(pixel / static_cast<std::uint32_t>(width));
+    const cv::Vec2f r = maps.event_lut.at<cv::Vec2f>(s.y, s.x);
+    s.u = r[0];
+    s.v = r[1];
+    s.count = counts[pixel];
+    samples.push_back(s);
+  };
+  std::vector<std::uint32_t> tied;
   for (std::size_t b = 0; b < candidates.size(); ++b) {
     const int k = quota[b];
     if (k <= 0) continue;
     // The k highest counts: all above the threshold count c*, and a random part of those at c*.
     std::array<int, 256> histogram{};
-    for (const EdgeSample& s : candidates[b])
-      ++histogram[s.count];
+    for (const std::uint32_t pixel : candidates[b])
+      ++histogram[counts[pixel]];
     int c_star = 255, above = 0;
     while (above + histogram[c_star] < k)
       above += histogram[c_star--];
     tied.clear();
-    for (const EdgeSample& s : candidates[b]) {
-      if (s.count > c_star) {
-        samples.push_back(s);
-      } else if (s.count == c_star) {
-        tied.push_back(s);
+    for (const std::uint32_t pixel : candidates[b]) {
+      if (counts[pixel] > c_star) {
+        take(pixel);
+      } else if (counts[pixel] == c_star) {
+        tied.push_back(pixel);
       }
     }
     const std::size_t need = static_cast<std::size_t>(k - above);
     for (std::size_t i = 0; i < need; ++i) {  // partial Fisher–Yates
       std::swap(tied[i], tied[i + Below(rng, tied.size() - i)]);
-      samples.push_back(tied[i]);
+      take(tied[i]);
     }
   }
   return samples;

@@ -102,8 +102,8 @@ TEST(SampleAaMap, DeterministicForASeedAndTiesVaryWithIt) {
 TEST(SampleAaMap, SkipsPixelsOutsideTheValidRectifiedArea) {
   const AaMap map = RandomAaMap(3);
   geometry::RectificationMaps maps = testing::IdentityMaps(64, 48);
-  maps.valid_mask.colRange(0, 32).setTo(0);  // left half invalid
-  maps.event_lut.at<cv::Vec2f>(40, 40) = {std::nanf(""), std::nanf("")};
+  maps.raw_valid.colRange(0, 32).setTo(0);  // left half maps outside the valid area
+  maps.raw_valid.at<std::uint8_t>(40, 40) = 0;
   for (const EdgeSample& s : SampleAaMap(map, maps, Budget(5000), 1)) {
     EXPECT_GE(s.u, 31.5f);
     EXPECT_FALSE(s.x == 40 && s.y == 40);

@@ -1,9 +1,17 @@
 #pragma once
 /// Moves raw-coordinate images (time surfaces, AA maps) to the rectified plane, once per image
-/// (algorithm.md §1.4, "image content pipeline"): bilinear cv::remap with the camera's maps,
-/// converted once to OpenCV's fixed-point form (faster, and the same bits on every run).
+/// (algorithm.md §1.4, "image content pipeline"): bilinear interpolation at the camera's remap
+/// positions, with 7-bit sub-pixel weights (OpenCV's fixed-point remap uses 5), and 0 outside the
+/// sensor (as cv::remap with a constant border; tested against it).
+///
+/// Why not cv::remap: per pixel the four neighbours and weights are precomputed once here, and the
+/// source is read through a one-pixel zero border, so the loop has no bounds checks; it is ~1.5×
+/// faster than OpenCV 4.6's fixed-point remap on one core (bench_representations), and with
+/// SSE2 four pixels are interpolated at once.
 
+#include <cstdint>
 #include <opencv2/core/mat.hpp>
+#include <vector>
 
 #include "aavio/geometry/rectification.hpp"
 
@@ -13,15 +21,25 @@ class ImageRectifier {
  public:
   explicit ImageRectifier(const geometry::RectificationMaps& maps);
 
-  /// Bilinear remap of a raw CV_8UC1 image into the rectified plane; 0 outside the sensor.
+  /// Bilinear resampling of a raw CV_8UC1 image into the rectified plane (same size).
   void Rectify(const cv::Mat& raw, cv::Mat* rectified) const;
+
+  /// A raw image with a one-pixel zero border, for images made by the caller: fill
+  /// `PaddedInterior(padded)` and pass `padded` to RectifyPadded (saves a copy).
+  cv::Mat MakePadded() const;
+  static cv::Mat PaddedInterior(cv::Mat& padded);
+  void RectifyPadded(const cv::Mat& padded, cv::Mat* rectified) const;
 
   const cv::Mat& valid_mask() const { return valid_mask_; }
 
  private:
-  cv::Mat map_xy_;      // CV_16SC2 integer positions
-  cv::Mat map_frac_;    // CV_16UC1 interpolation table indices
-  cv::Mat valid_mask_;  // CV_8UC1, 255 where the rectified pixel sees the sensor
+  int width_, height_;
+  // Per rectified pixel: index of the top-left neighbour in the padded image, and the weights
+  // of (0,0), (1,0), (0,1), (1,1) summing to 1 << 14 (4 per pixel).
+  std::vector<std::int32_t> base_;
+  std::vector<std::uint16_t> weights_;
+  cv::Mat valid_mask_;
+  mutable cv::Mat padded_;  // scratch of Rectify
 };
 
 }  // namespace aavio::events

@@ -102,8 +102,10 @@ Status RepresentationBuilder::Build(TimeNs t_ns, Observation* out) {
   const double decay_ms = config_.time_surface.decay_ms;
   for (CameraState* camera : {&left_, &right_}) {
     cv::Mat& ts = camera == &left_ ? out->ts_left : out->ts_right;
-    camera->ts.Render(t_ns, decay_ms, &scratch_raw_);
-    camera->rectifier.Rectify(scratch_raw_, &ts);
+    if (padded_.empty()) padded_ = camera->rectifier.MakePadded();
+    cv::Mat interior = ImageRectifier::PaddedInterior(padded_);
+    camera->ts.Render(t_ns, decay_ms, &interior);
+    camera->rectifier.RectifyPadded(padded_, &ts);
     MedianFilterTs(ts, config_.time_surface.median_half_size, &ts);
   }
   out->timings.time_surface_ms = MsSince(start);

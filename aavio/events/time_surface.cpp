@@ -9,7 +9,21 @@
 
 namespace aavio::events {
 namespace {
-constexpr double kNever = -1e12;  // seconds before the epoch: decays to exactly 0
+constexpr float kNever = -1e30f;        // seconds before the epoch: decays to exactly 0
+constexpr TimeNs kEpochSpan = kNsPerS;  // how far the data may run ahead of the epoch
+
+// One row: exponent, exp, 0–255, in a loop the compiler vectorises; built for AVX2 and for the
+// x86-64 baseline, picked at load time (the same IEEE operations, so the same bytes either way).
+#if defined(__x86_64__) && defined(__GNUC__)
+__attribute__((target_clones("avx2", "default")))
+#endif
+void RenderRow(const float* t_last, std::uint8_t* dst, int width, float t_s, float inv_tau) {
+  for (int x = 0; x < width; ++x) {
+    const float e = std::clamp((t_last[x] - t_s) * inv_tau, -87.0f, 0.0f);
+    dst[x] = static_cast<std::uint8_t>(static_cast<int>(255.0f * FastExpNonPositive(e) + 0.5f));
+  }
+}
+
 }  // namespace
 
 TimeSurface::TimeSurface(int width, int height, TimeNs epoch_ns)
@@ -31,27 +45,29 @@ Status TimeSurface::Insert(std::span<const Event> events) {
                              " s)");
     }
     newest_ns_ = e.t_ns;
+    if (e.t_ns - epoch_ns_ > kEpochSpan) MoveEpoch(e.t_ns);
     t_last_s_[static_cast<std::size_t>(e.y) * static_cast<std::size_t>(width_) + e.x] =
-        NsToSeconds(e.t_ns - epoch_ns_);
+        static_cast<float>(NsToSeconds(e.t_ns - epoch_ns_));
   }
   return Status::Ok();
 }
 
+void TimeSurface::MoveEpoch(TimeNs epoch_ns) {
+  const float shift = static_cast<float>(NsToSeconds(epoch_ns - epoch_ns_));
+  for (float& t : t_last_s_)
+    t -= shift;
+  epoch_ns_ = epoch_ns;
+}
+
 void TimeSurface::Render(TimeNs t_ns, double decay_ms, cv::Mat* out) const {
   out->create(height_, width_, CV_8UC1);
-  const std::size_t n = t_last_s_.size();
-  exponent_.resize(n);
-  const double t_s = NsToSeconds(t_ns - epoch_ns_);
-  const double inv_tau = 1e3 / decay_ms;
-  // Two simple loops the compiler vectorises: the exponent in double (stamps are large), then
-  // exp and the 0–255 scaling in float.
-  const double* t_last = t_last_s_.data();
-  float* x = exponent_.data();
-  for (std::size_t i = 0; i < n; ++i)
-    x[i] = static_cast<float>(std::min(0.0, std::max(-100.0, (t_last[i] - t_s) * inv_tau)));
-  std::uint8_t* dst = out->ptr<std::uint8_t>();
-  for (std::size_t i = 0; i < n; ++i)
-    dst[i] = static_cast<std::uint8_t>(255.0f * FastExpNonPositive(x[i]) + 0.5f);
+  const float t_s = static_cast<float>(NsToSeconds(t_ns - epoch_ns_));
+  const float inv_tau = static_cast<float>(1e3 / decay_ms);
+  // `out` may be a view (the interior of a padded image): rows are addressed by its step.
+  for (int y = 0; y < height_; ++y) {
+    RenderRow(t_last_s_.data() + static_cast<std::size_t>(y) * width_, out->ptr<std::uint8_t>(y),
+              width_, t_s, inv_tau);
+  }
 }
 
 cv::Mat BruteForceTimeSurface(std::span<const Event> events, int width, int height, TimeNs t_ns,

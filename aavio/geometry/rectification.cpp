@@ -48,6 +48,17 @@ RectificationMaps BuildRectificationMaps(const CameraModel& raw, const Eigen::Ma
             cv::Scalar(0.0));
   const double threshold = raw.model() == DistortionModel::kEquidistant ? 0.1 : 0.999;
   maps.valid_mask = coverage > threshold;  // 0 or 255
+  // Raw pixels whose rectified position (rounded) lies on a valid rectified pixel.
+  maps.raw_valid = cv::Mat(height, width, CV_8UC1, cv::Scalar(0));
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      const cv::Vec2f r = maps.event_lut.at<cv::Vec2f>(y, x);
+      if (!(r[0] >= 0.0f && r[1] >= 0.0f)) continue;  // also NaN
+      const int u = static_cast<int>(r[0] + 0.5f), v = static_cast<int>(r[1] + 0.5f);
+      if (u < width && v < height && maps.IsValid(u, v))
+        maps.raw_valid.at<std::uint8_t>(y, x) = 255;
+    }
+  }
   return maps;
 }
 

@@ -2,6 +2,7 @@
 /// Per-camera rectification products (algorithm.md §1.4):
 ///   event_lut   raw integer pixel (x, y) → rectified sub-pixel (u, v), for events and samples;
 ///   remap_x/y   rectified pixel → raw sub-pixel, for cv::remap of whole images (bilinear);
+///   raw_valid   raw pixels whose rectified position is a valid pixel (for events and samples);
 ///   valid_mask  rectified pixels whose bilinear footprint lies inside the raw image (255) or not
 ///               (0): the all-ones image remapped with remap_x/y, thresholded at 0.999
 ///               (plumb_bob/none) or 0.1 (equidistant), as the reference implementations do.
@@ -20,6 +21,8 @@ struct RectificationMaps {
   cv::Mat remap_x;     ///< CV_32FC1, height × width
   cv::Mat remap_y;     ///< CV_32FC1, height × width
   cv::Mat valid_mask;  ///< CV_8UC1, height × width, 0 or 255
+  cv::Mat raw_valid;   ///< CV_8UC1 over raw pixels: 255 where event_lut lands (rounded) on a
+                       ///< valid rectified pixel — the raw pixels mapping can use
 
   /// Rectified position of raw pixel (x, y); x, y must be inside the image.
   Eigen::Vector2f RectifyPixel(int x, int y) const {

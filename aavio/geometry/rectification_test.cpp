@@ -121,6 +121,24 @@ TEST_P(RectificationTest, ValidMaskMarksPixelsThatSeeTheSensor) {
   EXPECT_GT(valid, w * h / 2);
 }
 
+// raw_valid marks exactly the raw pixels whose rectified position is inside the image (not
+// negative) and rounds onto a valid pixel, and most raw pixels are usable.
+TEST_P(RectificationTest, RawValidFollowsTheLutAndTheMask) {
+  const int w = camera_->width(), h = camera_->height();
+  int usable = 0;
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      const Eigen::Vector2f r = maps_.RectifyPixel(x, y);
+      const long u = std::lround(r.x()), v = std::lround(r.y());
+      const bool expected = std::isfinite(r.x()) && r.x() >= 0.0f && r.y() >= 0.0f && u < w &&
+                            v < h && maps_.IsValid(static_cast<int>(u), static_cast<int>(v));
+      EXPECT_EQ(maps_.raw_valid.at<std::uint8_t>(y, x) != 0, expected) << x << ", " << y;
+      usable += expected ? 1 : 0;
+    }
+  }
+  EXPECT_GT(usable, w * h * 3 / 4);
+}
+
 INSTANTIATE_TEST_SUITE_P(RealCalibrations, RectificationTest,
                          ::testing::Range(0, static_cast<int>(testing::AllRealCameras().size())),
                          [](const ::testing::TestParamInfo<int>& param) {
