@@ -48,9 +48,9 @@ const std::string& Dir() {
       (void)(*writer)->Close();
     }
     {
-      auto writer = aavio::io::BagWriter::Create((d / "events_lz4.bag").string(),
-                                                 {.compression = aavio::io::BagCompression::kLz4,
-                                                  .width = 640, .height = 480});
+      auto writer = aavio::io::BagWriter::Create(
+          (d / "events_lz4.bag").string(),
+          {.compression = aavio::io::BagCompression::kLz4, .width = 640, .height = 480});
       (void)(*writer)->WriteEvents("/davis/left/events", events);
       (void)(*writer)->Close();
     }

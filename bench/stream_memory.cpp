@@ -24,9 +24,9 @@ long PeakRssKb() {
 int Write(const std::string& dir, std::size_t n) {
   std::filesystem::create_directories(dir);
   auto h5 = aavio::io::DsecH5EventWriter::Create(dir + "/events.h5");
-  auto bag = aavio::io::BagWriter::Create(dir + "/events_lz4.bag",
-                                          {.compression = aavio::io::BagCompression::kLz4,
-                                           .width = 640, .height = 480});
+  auto bag = aavio::io::BagWriter::Create(
+      dir + "/events_lz4.bag",
+      {.compression = aavio::io::BagCompression::kLz4, .width = 640, .height = 480});
   if (!h5.ok() || !bag.ok()) return 1;
   std::mt19937 rng(1);
   std::uniform_int_distribution<int> col(0, 639), row(0, 479), gap(0, 400);
@@ -36,10 +36,11 @@ int Write(const std::string& dir, std::size_t n) {
     block.clear();
     for (std::size_t i = 0; i < 1'000'000 && written < n; ++i, ++written) {
       t += gap(rng);
-      block.push_back({t, static_cast<std::uint16_t>(col(rng)), static_cast<std::uint16_t>(row(rng)),
-                       static_cast<std::uint8_t>(i & 1)});
+      block.push_back({t, static_cast<std::uint16_t>(col(rng)),
+                       static_cast<std::uint16_t>(row(rng)), static_cast<std::uint8_t>(i & 1)});
     }
-    if (!(*h5)->Write(block).ok() || !(*bag)->WriteEvents("/davis/left/events", block).ok()) return 1;
+    if (!(*h5)->Write(block).ok() || !(*bag)->WriteEvents("/davis/left/events", block).ok())
+      return 1;
   }
   if (!(*h5)->Close().ok() || !(*bag)->Close().ok()) return 1;
   std::printf("wrote %zu events to %s (peak RSS %ld MB)\n", n, dir.c_str(), PeakRssKb() / 1024);

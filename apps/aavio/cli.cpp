@@ -23,6 +23,7 @@ int RunCli(const std::vector<std::string>& args, std::ostream& out, std::ostream
   RegisterConfig(app, ctx);
   RegisterConvert(app, ctx);
   RegisterSimulate(app, ctx);
+  RegisterRepresentations(app, ctx);
   RegisterPlanned(app, ctx);
 
   std::vector<std::string> reversed(args.rbegin(), args.rend() - (args.empty() ? 0 : 1));

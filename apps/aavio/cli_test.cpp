@@ -178,3 +178,31 @@ TEST(Cli, ConfigErrorsAreClear) {
 
 }  // namespace
 }  // namespace aavio::cli
+
+namespace aavio::cli {
+namespace {
+
+TEST(Cli, RepresentationsOfASimulatedTick) {
+  const auto dir = testing::ScratchDir();
+  const std::string seq = (dir / "seq").string(), out = (dir / "rep").string();
+  Result r = RunAavio({"simulate", "--preset", "mini", "--duration", "1", "--out", seq, "--quiet"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  r = RunAavio({"representations", seq, "--at", "0.5", "--out", out, "--preset", "rpg", "--set",
+                "edge_sampling.num_points=300", "--set", "mapping.max_points=300"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  EXPECT_NE(r.out.find("samples: 300 from AA (budget 300)"), std::string::npos) << r.out;
+  for (const char* name : {"ts_left.png", "ts_right.png", "negative_ts_left.png", "gradient_u.png",
+                           "aa_map.png", "aa_blocks_raw.png", "samples.png", "samples_esvo.png"}) {
+    EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(out) / name)) << name;
+  }
+  // A tick outside the sequence, and a path that is not a sequence: clear errors.
+  r = RunAavio({"representations", seq, "--at", "7", "--out", out});
+  EXPECT_EQ(r.code, kExitError);
+  EXPECT_NE(r.err.find("--at 7.000 is outside the sequence (0 to 1.0"), std::string::npos) << r.err;
+  r = RunAavio({"representations", (dir / "nothing").string(), "--at", "0", "--out", out});
+  EXPECT_EQ(r.code, kExitError);
+  EXPECT_NE(r.err.find("nothing"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace aavio::cli

@@ -1,0 +1,137 @@
+// `aavio representations`: the representations of one tick of a sequence as PNGs — time
+// surfaces, negative TS and gradients, the AA map with its blocks, and the edge samples (AA and,
+// for comparison, ESVO's newest events at the same count).
+#include <CLI/CLI.hpp>
+#include <ostream>
+
+#include "aavio/common/format.hpp"
+#include "aavio/events/representation_builder.hpp"
+#include "aavio/geometry/rectification.hpp"
+#include "aavio/io/calibration.hpp"
+#include "aavio/io/sequence.hpp"
+#include "cli.hpp"
+#include "config_resolution.hpp"
+#include "representation_images.hpp"
+
+namespace aavio::cli {
+namespace {
+
+struct RepresentationsOptions {
+  std::string sequence;
+  std::string calibration;
+  std::string out_dir;
+  double at_s = -1.0;
+  double history_s = 0.3;
+  ConfigSources config;
+};
+
+Status Run(const RepresentationsOptions& options, Context& ctx) {
+  Expected<pipeline::OdometryConfig> config = ResolveOdometryConfig(options.config);
+  if (!config) return config.status();
+  Expected<io::SequenceDescription> description =
+      io::DescribeSequence(options.sequence, options.calibration);
+  if (!description) return description.status();
+  if (description->calibration.empty()) {
+    return InvalidArgument(options.sequence +
+                           ": the sequence names no calibration; give one with --calib");
+  }
+  Expected<io::LoadedCalibration> calibration = io::LoadCalibration(description->calibration);
+  if (!calibration) return calibration.status();
+  const geometry::StereoRig& rig = calibration->rig;
+
+  io::SequenceReaderOptions reader_options;
+  reader_options.stream.width = rig.width();
+  reader_options.stream.height = rig.height();
+  Expected<std::unique_ptr<io::SequenceReader>> reader =
+      io::SequenceReader::Open(*description, reader_options);
+  if (!reader) return reader.status();
+  const TimeNs start = (*reader)->start_ns(), end = (*reader)->end_ns();
+  const TimeNs at = start + SecondsToNs(options.at_s);
+  if (options.at_s < 0.0 || at > end) {
+    return InvalidArgument(StrFormat("--at %.3f is outside the sequence (0 to %.3f s)",
+                                     options.at_s, NsToSeconds(end - start)));
+  }
+  const TimeNs from = std::max(start, at - SecondsToNs(options.history_s));
+  AAVIO_RETURN_IF_ERROR((*reader)->Seek(from));
+
+  events::RepresentationConfig rc{config->time_surface, config->adaptive_accumulation,
+                                  config->edge_sampling,
+                                  static_cast<std::uint64_t>(config->pipeline.random_seed)};
+  const geometry::StereoRectification rectification = geometry::BuildStereoRectification(rig);
+  events::RepresentationBuilder builder(rectification, rig.width(), rig.height(), rc, from);
+  std::vector<events::Event> recent_left;  // for ESVO's selection
+  io::SensorPacket packet;
+  std::int64_t left_events = 0, right_events = 0;
+  while (true) {
+    Expected<bool> more = (*reader)->Next(&packet);
+    if (!more) return more.status();
+    if (!*more || packet.t_begin_ns > at) break;
+    AAVIO_RETURN_IF_ERROR(builder.AddEvents(events::Camera::kLeft, packet.left));
+    AAVIO_RETURN_IF_ERROR(builder.AddEvents(events::Camera::kRight, packet.right));
+    left_events += static_cast<std::int64_t>(packet.left.size());
+    right_events += static_cast<std::int64_t>(packet.right.size());
+    for (const events::Event& e : packet.left) {
+      if (e.t_ns > at - 50 * kNsPerMs && e.t_ns <= at) recent_left.push_back(e);
+    }
+  }
+  events::Observation obs;
+  AAVIO_RETURN_IF_ERROR(builder.Build(at, &obs));
+  events::EdgeSamplingConfig esvo = rc.edge_sampling;
+  esvo.num_points = static_cast<int>(std::max<std::size_t>(1, obs.samples.size()));
+  const std::vector<events::EdgeSample> esvo_samples =
+      events::SelectNewestEvents(recent_left, at, rectification.left, esvo);
+
+  Expected<std::vector<std::string>> written =
+      WriteRepresentationImages(obs, esvo_samples, rc.adaptive_accumulation.grid_cols,
+                                rc.adaptive_accumulation.grid_rows, options.out_dir);
+  if (!written) return written.status();
+
+  int closed = 0;
+  for (const events::AaBlock& block : obs.aa_blocks)
+    closed += block.closed ? 1 : 0;
+  ctx.out << StrFormat(
+      "tick at %.3f s (%s s on the sequence clock); events read from %.3f s: %lld left, %lld "
+      "right\n"
+      "AA: %lld events in the %.0f ms window, %lld accumulated; %d of %zu blocks froze\n"
+      "samples: %zu from AA (budget %d); ESVO's newest events at the same count: %zu\n"
+      "stage times [ms]: time surfaces %.2f, negative TS + gradients %.2f, AA %.2f, sampling "
+      "%.2f\n",
+      options.at_s, FormatSecondsNs(at).c_str(), NsToSeconds(from - start),
+      static_cast<long long>(left_events), static_cast<long long>(right_events),
+      static_cast<long long>(obs.aa_window_events), rc.adaptive_accumulation.window_ms,
+      static_cast<long long>(obs.aa_used_events), closed, obs.aa_blocks.size(), obs.samples.size(),
+      rc.edge_sampling.num_points, esvo_samples.size(), obs.timings.time_surface_ms,
+      obs.timings.derived_ms, obs.timings.aa_ms, obs.timings.sampling_ms);
+  ctx.out << "wrote " << options.out_dir << "/{";
+  for (std::size_t i = 0; i < written->size(); ++i)
+    ctx.out << (i ? "," : "") << (*written)[i];
+  ctx.out << "}\n";
+  return Status::Ok();
+}
+
+}  // namespace
+
+void RegisterRepresentations(CLI::App& app, Context& ctx) {
+  auto options = std::make_shared<RepresentationsOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "representations",
+      "Write one tick's time surfaces, AA map and edge samples as PNGs, to look at them");
+  sub->add_option("sequence", options->sequence, "sequence.yaml, DSEC folder or bag")->required();
+  sub->add_option("--at", options->at_s, "Seconds from the start of the sequence")->required();
+  sub->add_option("--out", options->out_dir, "Folder for the PNGs")->required();
+  sub->add_option("--calib", options->calibration, "Calibration, if the sequence names none");
+  sub->add_option("--history", options->history_s,
+                  "Seconds of events read before --at (the time surface's memory)")
+      ->check(CLI::Range(0.0, 60.0));
+  AddConfigOptions(*sub, &options->config);
+  sub->callback([&ctx, options] {
+    ctx.action = [&ctx, options] {
+      const Status status = Run(*options, ctx);
+      if (status.ok()) return static_cast<int>(kExitOk);
+      ctx.err << "aavio representations: error: " << status.message() << "\n";
+      return static_cast<int>(kExitError);
+    };
+  });
+}
+
+}  // namespace aavio::cli
