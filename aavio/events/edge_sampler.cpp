@@ -145,4 +145,11 @@ std::vector<EdgeSample> SelectNewestEvents(std::span<const Event> events, TimeNs
   return samples;
 }
 
+std::vector<EdgeSample> SelectNewestEventsAtCount(std::span<const Event> events, TimeNs t_ns,
+                                                  const geometry::RectificationMaps& maps,
+                                                  EdgeSamplingConfig config, std::size_t count) {
+  config.num_points = static_cast<int>(std::max<std::size_t>(1, count));
+  return SelectNewestEvents(events, t_ns, maps, config);
+}
+
 }  // namespace aavio::events

@@ -36,4 +36,10 @@ std::vector<EdgeSample> SelectNewestEvents(std::span<const Event> events, TimeNs
                                            const geometry::RectificationMaps& maps,
                                            const EdgeSamplingConfig& config);
 
+/// ESVO's selection with its budget set to `count` (at least 1): the baseline at the same point
+/// count as another selection, for comparisons.
+std::vector<EdgeSample> SelectNewestEventsAtCount(std::span<const Event> events, TimeNs t_ns,
+                                                  const geometry::RectificationMaps& maps,
+                                                  EdgeSamplingConfig config, std::size_t count);
+
 }  // namespace aavio::events

@@ -116,10 +116,8 @@ Expected<SamplingComparison> CompareEdgeSampling(const SimulationWorld& world,
     AAVIO_RETURN_IF_ERROR(builder.AddEvents(events::Camera::kRight, right));
     events::Observation obs;
     AAVIO_RETURN_IF_ERROR(builder.Build(t, &obs));
-    events::EdgeSamplingConfig esvo = config.edge_sampling;
-    esvo.num_points = static_cast<int>(std::max<std::size_t>(1, obs.samples.size()));
-    const std::vector<events::EdgeSample> newest =
-        events::SelectNewestEvents(left, t, rectification.left, esvo);
+    const std::vector<events::EdgeSample> newest = events::SelectNewestEventsAtCount(
+        left, t, rectification.left, config.edge_sampling, obs.samples.size());
     const cv::Mat edges = EdgeTruthMask(world, t, truth);
     const int cols = config.edge_sampling.grid_cols, rows = config.edge_sampling.grid_rows;
     Accumulate(EvaluateSamples(obs.samples, edges, rectification.left.raw_valid, cols, rows),

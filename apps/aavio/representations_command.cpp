@@ -76,10 +76,8 @@ Status Run(const RepresentationsOptions& options, Context& ctx) {
   }
   events::Observation obs;
   AAVIO_RETURN_IF_ERROR(builder.Build(at, &obs));
-  events::EdgeSamplingConfig esvo = rc.edge_sampling;
-  esvo.num_points = static_cast<int>(std::max<std::size_t>(1, obs.samples.size()));
-  const std::vector<events::EdgeSample> esvo_samples =
-      events::SelectNewestEvents(recent_left, at, rectification.left, esvo);
+  const std::vector<events::EdgeSample> esvo_samples = events::SelectNewestEventsAtCount(
+      recent_left, at, rectification.left, rc.edge_sampling, obs.samples.size());
 
   Expected<std::vector<std::string>> written =
       WriteRepresentationImages(obs, esvo_samples, rc.adaptive_accumulation.grid_cols,
