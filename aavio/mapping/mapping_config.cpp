@@ -13,10 +13,10 @@ bool IsOdd(int n) {
 Status StaticStereoConfig::Validate() const {
   FieldChecker check;
   check
-      .Require(patch_width >= 3 && patch_width <= 101 && IsOdd(patch_width), "patch_width",
-               "must be odd, from 3 to 101")
-      .Require(patch_height >= 1 && patch_height <= 101 && IsOdd(patch_height), "patch_height",
-               "must be odd, from 1 to 101")
+      .Require(patch_width >= 3 && patch_width <= 63 && IsOdd(patch_width), "patch_width",
+               "must be odd, from 3 to 63")
+      .Require(patch_height >= 1 && patch_height <= 63 && IsOdd(patch_height), "patch_height",
+               "must be odd, from 1 to 63")
       .InRange("min_disparity", min_disparity, 0, 10000)
       .InRange("max_disparity", max_disparity, 1, 10000)
       .Require(min_disparity < max_disparity, "min_disparity",
@@ -31,10 +31,10 @@ Status StaticStereoConfig::Validate() const {
 Status TemporalStereoConfig::Validate() const {
   FieldChecker check;
   check
-      .Require(patch_rows >= 1 && patch_rows <= 101 && IsOdd(patch_rows), "patch_rows",
-               "must be odd, from 1 to 101")
-      .Require(patch_cols >= 3 && patch_cols <= 201 && IsOdd(patch_cols), "patch_cols",
-               "must be odd, from 3 to 201")
+      .Require(patch_rows >= 1 && patch_rows <= 31 && IsOdd(patch_rows), "patch_rows",
+               "must be odd, from 1 to 31")
+      .Require(patch_cols >= 3 && patch_cols <= 127 && IsOdd(patch_cols), "patch_cols",
+               "must be odd, from 3 to 127")
       .Positive("min_translation_m", min_translation_m)
       .Positive("threshold_factor", threshold_factor)
       .Positive("min_depth_m", min_depth_m)
@@ -48,8 +48,10 @@ Status TemporalStereoConfig::Validate() const {
 Status DepthRefinementConfig::Validate() const {
   FieldChecker check;
   check.InRange("max_iterations", max_iterations, 0, 1000)
-      .Require(patch_width >= 1 && IsOdd(patch_width), "patch_width", "must be odd and positive")
-      .Require(patch_height >= 1 && IsOdd(patch_height), "patch_height", "must be odd and positive")
+      .Require(patch_width >= 1 && patch_width <= 63 && IsOdd(patch_width), "patch_width",
+               "must be odd, from 1 to 63")
+      .Require(patch_height >= 1 && patch_height <= 63 && IsOdd(patch_height), "patch_height",
+               "must be odd, from 1 to 63")
       .Require(
           student_t_nu > 2.0 && student_t_nu < 1000.0, "student_t_nu",
           "= " + FieldChecker::Num(student_t_nu) + " must be in (2, 1000): ν ≤ 2 has no variance")

@@ -1,0 +1,74 @@
+#include "aavio/mapping/depth_fusion.hpp"
+
+namespace aavio::mapping {
+
+DepthFusion::DepthFusion(const RectifiedStereo& stereo, const MappingConfig& config)
+    : stereo_(stereo), config_(config) {}
+
+std::size_t DepthFusion::stored_points() const {
+  std::size_t n = 0;
+  for (const auto* fifo : {&static_, &temporal_}) {
+    for (const DepthBatch& b : *fifo)
+      n += b.points.size();
+  }
+  return n;
+}
+
+void DepthFusion::Trim(std::deque<DepthBatch>* fifo) const {
+  const FusionConfig& f = config_.fusion;
+  if (f.strategy == FusionStrategy::kConstFrames) {
+    while (static_cast<int>(fifo->size()) > f.max_frames)
+      fifo->pop_front();
+    return;
+  }
+  auto points = [&] {
+    std::size_t n = 0;
+    for (const DepthBatch& b : *fifo)
+      n += b.points.size();
+    return n;
+  };
+  while (fifo->size() > 1 && static_cast<double>(points()) > 1.5 * f.max_points)
+    fifo->pop_front();
+}
+
+void DepthFusion::Add(StereoKind kind, DepthBatch batch) {
+  std::deque<DepthBatch>& fifo = kind == StereoKind::kStatic ? static_ : temporal_;
+  fifo.push_back(std::move(batch));
+  Trim(&fifo);
+}
+
+bool DepthFusion::full() const {
+  // The reference uses the frame count for both strategies.
+  return static_cast<int>(static_.size()) >= config_.fusion.max_frames;
+}
+
+void DepthFusion::Clear() {
+  static_.clear();
+  temporal_.clear();
+}
+
+DepthMap DepthFusion::Fuse(const geometry::RigidTransform& T_world_frame, TimeNs t_ns) const {
+  DepthMap map(stereo_, T_world_frame, t_ns);
+  const geometry::RigidTransform T_frame_world = T_world_frame.Inverse();
+  auto fuse_fifo = [&](const std::deque<DepthBatch>& fifo) {
+    for (auto batch = fifo.rbegin(); batch != fifo.rend(); ++batch) {
+      const geometry::RigidTransform T_f_o = T_frame_world * batch->T_world_obs;
+      DepthPoint moved;
+      for (const DepthPoint& p : batch->points) {
+        if (Propagate(p, T_f_o, stereo_, &moved)) map.Fuse(moved, config_.fusion);
+      }
+    }
+  };
+  fuse_fifo(static_);
+  if (full()) {
+    map.Clean(config_.depth_refinement.max_inv_depth_stddev, config_.fusion.min_age,
+              config_.inv_depth_min, config_.inv_depth_max);
+  }
+  if (config_.regularization.enabled) {
+    map.Regularize(config_.regularization, config_.fusion.compatibility_sigmas);
+  }
+  fuse_fifo(temporal_);
+  return map;
+}
+
+}  // namespace aavio::mapping

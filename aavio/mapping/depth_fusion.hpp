@@ -1,0 +1,42 @@
+#pragma once
+/// The FIFO of recent depth batches and their fusion into a fresh depth map at every mapping
+/// cycle (algorithm.md §4.8–4.10). Static and temporal batches have FIFOs of their own and are
+/// both always fused (ESVO2's rpg configuration silently drops temporal results); static batches
+/// first, newest first, then cleaning once the FIFO is full, then temporal batches.
+
+#include <deque>
+#include <vector>
+
+#include "aavio/mapping/depth_map.hpp"
+
+namespace aavio::mapping {
+
+struct DepthBatch {
+  TimeNs t_ns = 0;
+  geometry::RigidTransform T_world_obs;
+  std::vector<DepthPoint> points;
+};
+
+class DepthFusion {
+ public:
+  DepthFusion(const RectifiedStereo& stereo, const MappingConfig& config);
+
+  void Add(StereoKind kind, DepthBatch batch);
+  /// A new map at T_world_frame with every stored batch propagated and fused into it.
+  DepthMap Fuse(const geometry::RigidTransform& T_world_frame, TimeNs t_ns) const;
+  /// Forgets every batch (re-initialisation).
+  void Clear();
+
+  bool full() const;
+  std::size_t batches() const { return static_.size() + temporal_.size(); }
+  std::size_t stored_points() const;
+
+ private:
+  void Trim(std::deque<DepthBatch>* fifo) const;
+
+  RectifiedStereo stereo_;
+  MappingConfig config_;
+  std::deque<DepthBatch> static_, temporal_;  // newest at the back
+};
+
+}  // namespace aavio::mapping

@@ -1,0 +1,147 @@
+#include "aavio/mapping/depth_fusion.hpp"
+
+#include <gtest/gtest.h>
+
+#include "aavio/geometry/rotation.hpp"
+#include "aavio/mapping/mapping_test_utils.hpp"
+#include "aavio/mapping/sgm_bootstrap.hpp"
+
+namespace aavio::mapping {
+namespace {
+
+DepthPoint Point(float u, float v, double rho, double sigma, double nu = 2.182) {
+  DepthPoint p;
+  p.u = u, p.v = v, p.rho = rho, p.nu = nu;
+  p.s2 = sigma * sigma * (nu - 2.0) / nu;
+  p.residual = 10.0;
+  return p;
+}
+
+TEST(StudentTFusion, BecomesInverseVarianceAveragingForLargeNu) {
+  const DepthPoint a = Point(0, 0, 0.10, 0.01, 1e6), b = Point(0, 0, 0.12, 0.02, 1e6);
+  const DepthPoint f = FuseStudentT(a, b);
+  const double wa = 1 / 1e-4, wb = 1 / 4e-4;
+  EXPECT_NEAR(f.rho, (wa * 0.10 + wb * 0.12) / (wa + wb), 1e-9);
+  EXPECT_NEAR(f.variance(), 1.0 / (wa + wb), 1e-9);
+  EXPECT_EQ(f.age, 1);
+  // Heavy tails: a disagreement inflates the fused scale.
+  const DepthPoint t = FuseStudentT(Point(0, 0, 0.10, 0.01), Point(0, 0, 0.13, 0.01));
+  const DepthPoint agree = FuseStudentT(Point(0, 0, 0.10, 0.01), Point(0, 0, 0.10, 0.01));
+  EXPECT_GT(t.s2, agree.s2);
+  EXPECT_TRUE(Compatible(Point(0, 0, 0.10, 0.01), Point(0, 0, 0.115, 0.01), 2.0));
+  EXPECT_FALSE(Compatible(Point(0, 0, 0.10, 0.01), Point(0, 0, 0.13, 0.01), 2.0));
+}
+
+TEST(Propagation, InverseDepthJacobianMatchesFiniteDifferences) {
+  const RectifiedStereo stereo = testing::SmallStereo();
+  geometry::RigidTransform T;
+  T.R = geometry::ExpSO3(Eigen::Vector3d(0.02, -0.05, 0.03));
+  T.t = {0.2, -0.1, -0.8};
+  const DepthPoint p = Point(70.3f, 50.8f, 0.1, 0.01);
+  DepthPoint moved, nudged;
+  ASSERT_TRUE(Propagate(p, T, stereo, &moved));
+  const double h = 1e-7;
+  DepthPoint q = p;
+  q.rho += h;
+  ASSERT_TRUE(Propagate(q, T, stereo, &nudged));
+  const double J = (nudged.rho - moved.rho) / h;
+  EXPECT_NEAR(std::sqrt(moved.s2 / p.s2), std::abs(J), 1e-5 * std::abs(J));
+  // And the geometry: the 3-D point is the same one.
+  const Eigen::Vector3d before = T * p.Point(stereo), after = moved.Point(stereo);
+  EXPECT_NEAR((before - after).norm(), 0.0, 1e-6);
+}
+
+TEST(DepthMap, FusionRules) {
+  const RectifiedStereo stereo = testing::SmallStereo();
+  FusionConfig config;
+  config.radius = 1;
+  DepthMap map(stereo, {}, 0);
+  map.Fuse(Point(10.2f, 20.7f, 0.10, 0.01), config);
+  EXPECT_EQ(map.size(), 9u);  // 3×3 cells around (10, 20)
+  ASSERT_NE(map.At(11, 21), nullptr);
+  EXPECT_EQ(map.At(11, 21)->u, 11.0f);                 // snapped to its cell
+  map.Fuse(Point(10.0f, 20.0f, 0.105, 0.01), config);  // compatible: fused, age 1
+  EXPECT_EQ(map.At(10, 20)->age, 1);
+  EXPECT_NEAR(map.At(10, 20)->rho, 0.1025, 1e-9);
+  // Incompatible and farther (smaller ρ) behind a clearly closer point: ignored.
+  map.Fuse(Point(10.0f, 20.0f, 0.03, 0.001), config);
+  EXPECT_NEAR(map.At(10, 20)->rho, 0.1025, 1e-9);
+  // Incompatible, closer, better in variance and residual: replaces.
+  DepthPoint better = Point(30.0f, 40.0f, 0.2, 0.001);
+  map.Fuse(Point(30.0f, 40.0f, 0.1, 0.01), config);
+  better.residual = 1.0;
+  map.Fuse(better, config);
+  EXPECT_NEAR(map.At(30, 40)->rho, 0.2, 1e-12);
+  // Cleaning: points that were never fused (age 0) go with min_age 1.
+  const std::size_t before = map.size();
+  map.Clean(1.0, 1, 0.001, 0.25);
+  EXPECT_LT(map.size(), before);
+  EXPECT_NE(map.At(10, 20), nullptr);
+  EXPECT_EQ(map.At(12, 22), nullptr);
+}
+
+TEST(DepthFusion, FifoPoliciesAndPropagation) {
+  const RectifiedStereo stereo = testing::SmallStereo();
+  MappingConfig config;
+  config.fusion.max_frames = 3;
+  DepthFusion fusion(stereo, config);
+  for (int k = 0; k < 5; ++k) {
+    DepthBatch batch{k, {}, {Point(50.0f + k, 60.0f, 0.1, 0.01)}};
+    fusion.Add(StereoKind::kStatic, batch);
+  }
+  EXPECT_EQ(fusion.batches(), 3u);
+  EXPECT_TRUE(fusion.full());
+  // A temporal batch is kept in its own FIFO and fused after cleaning (not cleaned this cycle).
+  DepthPoint temporal = Point(100.0f, 30.0f, 0.05, 0.01);
+  temporal.kind = StereoKind::kTemporal;
+  fusion.Add(StereoKind::kTemporal, {5, {}, {temporal}});
+  geometry::RigidTransform forward;
+  forward.t = {0.0, 0.0, -1.0};  // the new frame is 1 m behind: points at 10 m are now at 11 m
+  const DepthMap map = fusion.Fuse(forward, 6);
+  ASSERT_GT(map.size(), 0u);
+  bool temporal_seen = false;
+  for (const DepthPoint& p : map.Points()) {
+    temporal_seen = temporal_seen || p.kind == StereoKind::kTemporal;
+  }
+  EXPECT_TRUE(temporal_seen);
+  for (const DepthPoint& p : map.Points()) {
+    const double expected = p.kind == StereoKind::kStatic ? 11.0 : 21.0;
+    EXPECT_NEAR(1.0 / p.rho, expected, 1e-6);
+  }
+  config.fusion.strategy = FusionStrategy::kConstPoints;
+  config.fusion.max_points = 10;
+  DepthFusion by_points(stereo, config);
+  for (int k = 0; k < 10; ++k) {
+    DepthBatch batch{k, {}, std::vector<DepthPoint>(6, Point(50.0f, 60.0f, 0.1, 0.01))};
+    by_points.Add(StereoKind::kStatic, batch);
+  }
+  EXPECT_LE(by_points.stored_points(), 15u);  // ≤ 1.5 × max_points
+}
+
+TEST(SgmBootstrap, DepthOfAShiftedTextureAndTooFewPoints) {
+  const RectifiedStereo stereo = testing::SmallStereo();
+  cv::Mat left8, right8;
+  const cv::Mat left = testing::Texture(160, 120, 5);
+  left.convertTo(left8, CV_8U);
+  testing::Shifted(left, 16.0, 0.0).convertTo(right8, CV_8U);
+  std::vector<Eigen::Vector2f> points;
+  for (int v = 20; v < 100; v += 3)
+    for (int u = 60; u < 140; u += 3)
+      points.emplace_back(u, v);
+  MappingConfig config;
+  config.bootstrap.min_points = 100;
+  const Expected<std::vector<DepthPoint>> sgm =
+      BootstrapWithSgm(left8, right8, points, stereo, config);
+  ASSERT_TRUE(sgm.ok()) << sgm.status().message();
+  int right = 0;
+  for (const DepthPoint& p : *sgm)
+    right += std::abs(stereo.Disparity(p.rho) - 16.0) < 0.5;
+  EXPECT_GT(right, static_cast<int>(sgm->size()) * 9 / 10);
+  config.bootstrap.min_points = 100000;
+  const auto refused = BootstrapWithSgm(left8, right8, points, stereo, config);
+  EXPECT_NE(refused.status().message().find("fewer than mapping.bootstrap.min_points"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace aavio::mapping

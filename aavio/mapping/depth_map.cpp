@@ -1,0 +1,166 @@
+#include "aavio/mapping/depth_map.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace aavio::mapping {
+
+DepthPoint FuseStudentT(const DepthPoint& a, const DepthPoint& b) {
+  DepthPoint f = a;
+  const double nu = std::min(a.nu, b.nu);
+  const double sum = a.s2 + b.s2;
+  const double d = a.rho - b.rho;
+  f.rho = (b.s2 * a.rho + a.s2 * b.rho) / sum;
+  f.s2 = (nu + d * d / sum) / (nu + 1.0) * (a.s2 * b.s2 / sum);
+  f.nu = nu + 1.0;
+  f.age = std::max(a.age, b.age) + 1;
+  f.residual = std::min(a.residual, b.residual);
+  f.near_horizontal = a.near_horizontal || b.near_horizontal;
+  return f;
+}
+
+bool Compatible(const DepthPoint& a, const DepthPoint& b, double sigmas) {
+  const double d = std::abs(a.rho - b.rho);
+  return d < sigmas * std::sqrt(a.variance()) || d < sigmas * std::sqrt(b.variance());
+}
+
+bool Propagate(const DepthPoint& point, const geometry::RigidTransform& T_f_o,
+               const RectifiedStereo& stereo, DepthPoint* out) {
+  const double pu = point.u, pv = point.v;
+  const Eigen::Vector3d bar((pu - stereo.cx_left) / stereo.f, (pv - stereo.cy) / stereo.f, 1.0);
+  const Eigen::Vector3d p = T_f_o * (bar / point.rho);
+  double u, v;
+  if (!stereo.Project(p, &u, &v)) return false;
+  if (u < 0.0 || v < 0.0 || u > stereo.width - 1.0 || v > stereo.height - 1.0) return false;
+  const double r3x = T_f_o.R.row(2).dot(bar);
+  const double denominator = r3x + T_f_o.t.z() * point.rho;
+  const double J = r3x / (denominator * denominator);
+  *out = point;
+  out->u = static_cast<float>(u);
+  out->v = static_cast<float>(v);
+  out->rho = 1.0 / p.z();
+  out->s2 = J * J * point.s2;
+  return true;
+}
+
+DepthMap::DepthMap(const RectifiedStereo& stereo, const geometry::RigidTransform& T_world_frame,
+                   TimeNs t_ns)
+    : stereo_(stereo),
+      T_world_frame_(T_world_frame),
+      t_ns_(t_ns),
+      cells_(static_cast<std::size_t>(stereo.width) * static_cast<std::size_t>(stereo.height)) {}
+
+const DepthPoint* DepthMap::At(int x, int y) const {
+  const DepthPoint& p = cells_[static_cast<std::size_t>(y) * stereo_.width + x];
+  return p.rho > 0.0 ? &p : nullptr;
+}
+
+void DepthMap::Place(int x, int y, const DepthPoint& point) {
+  DepthPoint& cell = cells_[static_cast<std::size_t>(y) * stereo_.width + x];
+  if (cell.rho <= 0.0) ++occupied_;
+  cell = point;
+  cell.u = static_cast<float>(x);  // snapped to the cell; the 3-D point follows from (u, v, ρ)
+  cell.v = static_cast<float>(y);
+}
+
+void DepthMap::FuseCell(int x, int y, const DepthPoint& point, const FusionConfig& config) {
+  DepthPoint& cell = cells_[static_cast<std::size_t>(y) * stereo_.width + x];
+  if (cell.rho <= 0.0) {
+    Place(x, y, point);
+    return;
+  }
+  if (Compatible(cell, point, config.compatibility_sigmas)) {
+    const DepthPoint fused = FuseStudentT(cell, point);
+    Place(x, y, fused);
+    return;
+  }
+  // Occlusion: a clearly closer stored point stays; otherwise the new one replaces it only if
+  // it is better in both variance and residual.
+  if (cell.rho - config.compatibility_sigmas * std::sqrt(cell.variance()) > point.rho) return;
+  if (point.variance() < cell.variance() && point.residual < cell.residual) Place(x, y, point);
+}
+
+void DepthMap::Fuse(const DepthPoint& point, const FusionConfig& config) {
+  const int x0 = static_cast<int>(std::floor(point.u)), y0 = static_cast<int>(std::floor(point.v));
+  const int lo = config.radius == 0 ? 0 : -1, hi = 1;
+  for (int dy = lo; dy <= hi; ++dy) {
+    for (int dx = lo; dx <= hi; ++dx) {
+      const int x = x0 + dx, y = y0 + dy;
+      if (x < 0 || y < 0 || x >= stereo_.width || y >= stereo_.height) continue;
+      FuseCell(x, y, point, config);
+    }
+  }
+}
+
+void DepthMap::InsertNaive(const DepthPoint& point) {
+  const int x0 = static_cast<int>(std::floor(point.u)), y0 = static_cast<int>(std::floor(point.v));
+  for (int dy = 0; dy <= 1; ++dy) {
+    for (int dx = 0; dx <= 1; ++dx) {
+      const int x = x0 + dx, y = y0 + dy;
+      if (x < 0 || y < 0 || x >= stereo_.width || y >= stereo_.height) continue;
+      const DepthPoint* stored = At(x, y);
+      if (stored == nullptr || (stored->rho <= point.rho && point.residual < stored->residual)) {
+        Place(x, y, point);
+      }
+    }
+  }
+}
+
+void DepthMap::Clean(double max_stddev, int min_age, double rho_lo, double rho_hi) {
+  for (DepthPoint& p : cells_) {
+    if (p.rho <= 0.0) continue;
+    if (std::sqrt(p.variance()) > max_stddev || p.age < min_age || p.rho < rho_lo ||
+        p.rho > rho_hi) {
+      p = DepthPoint{};
+      p.rho = 0.0;
+      --occupied_;
+    }
+  }
+}
+
+void DepthMap::Regularize(const RegularizationConfig& config, double compatibility_sigmas) {
+  const std::vector<DepthPoint> before = cells_;
+  const int w = stereo_.width, h = stereo_.height, r = config.radius;
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      const DepthPoint& p = before[static_cast<std::size_t>(y) * w + x];
+      if (p.rho <= 0.0) continue;
+      int neighbours = 0;
+      std::vector<const DepthPoint*> close;
+      for (int yy = std::max(0, y - r); yy <= std::min(h - 1, y + r); ++yy) {
+        for (int xx = std::max(0, x - r); xx <= std::min(w - 1, x + r); ++xx) {
+          const DepthPoint& q = before[static_cast<std::size_t>(yy) * w + xx];
+          if (q.rho <= 0.0 || (xx == x && yy == y)) continue;
+          ++neighbours;
+          if (Compatible(p, q, compatibility_sigmas)) close.push_back(&q);
+        }
+      }
+      DepthPoint& out = cells_[static_cast<std::size_t>(y) * w + x];
+      if (neighbours <= config.min_neighbours) continue;
+      if (static_cast<int>(close.size()) <= config.min_close_neighbours) {
+        out = DepthPoint{};  // an outlier among many neighbours
+        --occupied_;
+        continue;
+      }
+      DepthPoint fused = p;
+      for (const DepthPoint* q : close)
+        fused = FuseStudentT(fused, *q);
+      out.rho = fused.rho;
+    }
+  }
+}
+
+std::vector<DepthPoint> DepthMap::Points() const {
+  std::vector<DepthPoint> points;
+  points.reserve(occupied_);
+  for (const DepthPoint& p : cells_) {
+    if (p.rho > 0.0) points.push_back(p);
+  }
+  return points;
+}
+
+std::size_t DepthMap::size() const {
+  return occupied_;
+}
+
+}  // namespace aavio::mapping

@@ -1,0 +1,205 @@
+#include "aavio/mapping/depth_refinement.hpp"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace aavio::mapping {
+
+double StudentTScale2(std::span<const float> residuals, double nu, double s2_start) {
+  double s2 = s2_start;
+  for (int iteration = 0; iteration < 20; ++iteration) {
+    double sum = 0.0;
+    int n = 0;
+    for (const float r : residuals) {
+      if (r == 0.0f) continue;
+      const double r2 = static_cast<double>(r) * static_cast<double>(r);
+      sum += r2 * (nu + 1.0) / (nu + r2 / s2);
+      ++n;
+    }
+    if (n == 0 || sum <= 0.0) return s2_start;
+    const double next = sum / n;
+    const bool converged = std::abs(next - s2) < 0.05 * s2;
+    s2 = next;
+    if (converged) break;
+  }
+  return s2;
+}
+
+namespace {
+
+constexpr int kMaxPatch = 64 * 64;
+
+// Bilinear samples of a w×h patch centred at (x, y), one set of weights for all; false if any
+// sample would fall outside the image.
+bool SamplePatch(const cv::Mat& image, double x, double y, int pw, int ph, float* out) {
+  const double left = x - pw / 2, top = y - ph / 2;
+  const int x0 = static_cast<int>(std::floor(left)), y0 = static_cast<int>(std::floor(top));
+  if (x0 < 0 || y0 < 0 || x0 + pw >= image.cols || y0 + ph >= image.rows) return false;
+  const float fx = static_cast<float>(left - x0), fy = static_cast<float>(top - y0);
+  const float w00 = (1 - fx) * (1 - fy), w10 = fx * (1 - fy), w01 = (1 - fx) * fy, w11 = fx * fy;
+  for (int r = 0; r < ph; ++r) {
+    const float* a = image.ptr<float>(y0 + r) + x0;
+    const float* b = image.ptr<float>(y0 + r + 1) + x0;
+    for (int c = 0; c < pw; ++c)
+      out[r * pw + c] = w00 * a[c] + w10 * a[c + 1] + w01 * b[c] + w11 * b[c + 1];
+  }
+  return true;
+}
+
+// The residual patch r(ρ) of one match: fixed reference patch minus the patch at ρ's position.
+class Residual {
+ public:
+  Residual(const RefinementInput& in, const Match& m, const RectifiedStereo& stereo, int pw, int ph)
+      : in_(in), m_(m), stereo_(stereo), u_(m.u), v_(m.v), pw_(pw), ph_(ph), n_(pw * ph) {
+    const cv::Mat& reference = m.kind == StereoKind::kStatic ? in.left_ts : *in.aa_now;
+    ok_ = SamplePatch(reference, u_, v_, pw, ph, reference_);
+  }
+  bool ok() const { return ok_; }
+  int size() const { return n_; }
+  // r = reference − target at ρ; out-of-image targets give 255 everywhere (then robustified).
+  void operator()(double rho, float* r) const {
+    float target[kMaxPatch];
+    bool inside = false;
+    if (m_.kind == StereoKind::kStatic) {
+      inside = SamplePatch(in_.right_ts, u_ - stereo_.Disparity(rho), v_, pw_, ph_, target);
+    } else {
+      double u, v;
+      inside = stereo_.Project(in_.T_past_now * stereo_.Backproject(u_, v_, rho), &u, &v) &&
+               SamplePatch(*in_.aa_past, u, v, pw_, ph_, target);
+    }
+    for (int k = 0; k < n_; ++k)
+      r[k] = inside ? reference_[k] - target[k] : 255.0f;
+  }
+
+ private:
+  const RefinementInput& in_;
+  const Match& m_;
+  const RectifiedStereo& stereo_;
+  double u_, v_;
+  int pw_, ph_, n_;
+  bool ok_ = false;
+  float reference_[kMaxPatch];
+};
+
+struct Evaluation {
+  float weighted[kMaxPatch];  // √w r
+  float weights[kMaxPatch];
+  double cost = 0.0;  // Σ w r²
+};
+
+void Evaluate(const Residual& f, double rho, double nu, double s2_start, Evaluation* e) {
+  float r[kMaxPatch];
+  f(rho, r);
+  const int n = f.size();
+  const double s2 =
+      StudentTScale2(std::span<const float>(r, static_cast<std::size_t>(n)), nu, s2_start);
+  e->cost = 0.0;
+  for (int k = 0; k < n; ++k) {
+    const double rk = r[k];
+    const double w = (nu + 1.0) / (nu + rk * rk / s2);
+    e->weights[k] = static_cast<float>(w);
+    e->weighted[k] = static_cast<float>(std::sqrt(w) * rk);
+    e->cost += w * rk * rk;
+  }
+}
+
+// d(√w r)/dρ by a forward difference with the weights of ρ held fixed.
+double JacobianNorm2(const Residual& f, double rho, double h, const Evaluation& at, double* jtr) {
+  float r[kMaxPatch];
+  f(rho + h, r);
+  double jtj = 0.0;
+  *jtr = 0.0;
+  for (int k = 0; k < f.size(); ++k) {
+    const double shifted =
+        std::sqrt(static_cast<double>(at.weights[k])) * static_cast<double>(r[k]);
+    const double base = at.weighted[k];
+    const double j = (shifted - base) / h;
+    jtj += j * j;
+    *jtr += j * base;
+  }
+  return jtj;
+}
+
+bool RefineOne(const RefinementInput& in, const Match& m, const RectifiedStereo& stereo,
+               const MappingConfig& config, DepthPoint* out) {
+  const DepthRefinementConfig& c = config.depth_refinement;
+  const Residual f(in, m, stereo, c.patch_width, c.patch_height);
+  if (!f.ok()) return false;
+  const double nu = c.student_t_nu, s2_t = c.student_t_scale * c.student_t_scale;
+  double rho = m.rho;
+  Evaluation e;
+  Evaluate(f, rho, nu, s2_t, &e);
+  double jtj = 0.0, jtr = 0.0;
+  if (c.max_iterations == 0) {
+    // ESVO2: ρ from matching, σ from one 5 % forward difference, ‖J‖ floored at 0.1.
+    jtj = std::max(0.01, JacobianNorm2(f, rho, 0.05 * rho, e, &jtr));
+  } else {
+    double lambda = 1e-3;
+    for (int iteration = 0; iteration < c.max_iterations; ++iteration) {
+      const double h = std::max(1e-7, 1e-3 * rho);
+      jtj = JacobianNorm2(f, rho, h, e, &jtr);
+      if (jtj <= 1e-12) break;
+      bool improved = false;
+      double step = 0.0;
+      for (int attempt = 0; attempt < 8 && !improved; ++attempt) {
+        step = -jtr / (jtj * (1.0 + lambda));
+        const double candidate = rho + step;
+        if (candidate > 0.0) {
+          Evaluation trial;
+          Evaluate(f, candidate, nu, s2_t, &trial);
+          if (trial.cost < e.cost) {
+            rho = candidate;
+            e = trial;
+            lambda = std::max(1e-7, lambda * 0.1);
+            improved = true;
+            continue;
+          }
+        }
+        lambda *= 10.0;
+      }
+      if (!improved || std::abs(step) < 1e-6 * rho) break;
+    }
+    jtj = JacobianNorm2(f, rho, std::max(1e-7, 1e-3 * rho), e, &jtr);
+  }
+  if (!(rho > 0.001) || jtj <= 0.0) return false;
+  const double sigma_t2 = nu / (nu - 2.0) * s2_t;
+  const double variance = sigma_t2 / jtj;
+  // Culling (algorithm.md §4.7).
+  const double area = static_cast<double>(c.patch_width) * c.patch_height;
+  if (std::sqrt(variance) > c.max_inv_depth_stddev) return false;
+  if (e.cost > c.residual_threshold * c.residual_threshold * area) return false;
+  if (rho < config.inv_depth_min || rho > config.inv_depth_max) return false;
+  out->u = m.u;
+  out->v = m.v;
+  out->rho = rho;
+  out->nu = nu;
+  out->s2 = variance * (nu - 2.0) / nu;
+  out->residual = e.cost;
+  out->age = 0;
+  out->kind = m.kind;
+  out->near_horizontal = m.near_horizontal;
+  return true;
+}
+
+}  // namespace
+
+std::vector<DepthPoint> RefineDepths(const RefinementInput& input, std::span<const Match> matches,
+                                     const RectifiedStereo& stereo, const MappingConfig& config) {
+  std::vector<DepthPoint> results(matches.size());
+  std::vector<char> ok(matches.size(), 0);
+  tbb::parallel_for(std::size_t{0}, matches.size(), [&](std::size_t i) {
+    const Match& m = matches[i];
+    if (m.kind == StereoKind::kTemporal && (input.aa_now == nullptr || input.aa_past == nullptr))
+      return;
+    ok[i] = RefineOne(input, m, stereo, config, &results[i]) ? 1 : 0;
+  });
+  std::vector<DepthPoint> points;
+  for (std::size_t i = 0; i < matches.size(); ++i) {
+    if (ok[i]) points.push_back(results[i]);
+  }
+  return points;
+}
+
+}  // namespace aavio::mapping

@@ -1,0 +1,34 @@
+#pragma once
+/// Depth refinement and uncertainty (algorithm.md §4.5): for each match a 1-D Levenberg–Marquardt
+/// on ρ of the Student-t-weighted patch residual — left TS minus right TS at the disparity of ρ
+/// for static matches; current AA minus past AA at the epipolar position of ρ for temporal ones
+/// (the paper's temporal residual on AA maps, as ESVO2 evaluates it). Uncertainty from the
+/// Jacobian: σ_ρ² = σ_t² / JᵀJ, σ_t² = ν/(ν − 2) s_t². `max_iterations = 0` keeps ρ from matching
+/// and only evaluates σ_ρ (ESVO2). Estimates failing the culling rules (§4.7) are dropped.
+
+#include <opencv2/core/mat.hpp>
+#include <span>
+#include <vector>
+
+#include "aavio/geometry/rigid_transform.hpp"
+#include "aavio/mapping/depth_point.hpp"
+#include "aavio/mapping/mapping_config.hpp"
+
+namespace aavio::mapping {
+
+struct RefinementInput {
+  const cv::Mat& left_ts;            ///< CV_32FC1, for static matches
+  const cv::Mat& right_ts;           ///< CV_32FC1
+  const cv::Mat* aa_now = nullptr;   ///< CV_32FC1, for temporal matches
+  const cv::Mat* aa_past = nullptr;  ///< CV_32FC1
+  geometry::RigidTransform T_past_now;
+};
+
+std::vector<DepthPoint> RefineDepths(const RefinementInput& input, std::span<const Match> matches,
+                                     const RectifiedStereo& stereo, const MappingConfig& config);
+
+/// The robust scale of residuals by the Student-t IRLS loop (start s², iterate until the change
+/// is below 5 %), and the weights w_k = (ν + 1)/(ν + r_k²/s²).
+double StudentTScale2(std::span<const float> residuals, double nu, double s2_start);
+
+}  // namespace aavio::mapping

@@ -1,0 +1,24 @@
+#pragma once
+/// What mapping publishes for tracking: an immutable snapshot of the newest fused map, in world
+/// coordinates (shared by pointer; never modified after it is made).
+
+#include <Eigen/Core>
+#include <memory>
+#include <vector>
+
+#include "aavio/common/time.hpp"
+#include "aavio/geometry/rigid_transform.hpp"
+#include "aavio/mapping/depth_point.hpp"
+
+namespace aavio::mapping {
+
+struct LocalMap {
+  TimeNs t_ns = 0;
+  geometry::RigidTransform T_world_ref;       ///< the frame the map was fused in
+  std::vector<DepthPoint> points;             ///< in that frame (rectified left pixels, ρ, σ)
+  std::vector<Eigen::Vector3d> points_world;  ///< the same points in the world
+};
+
+using LocalMapPtr = std::shared_ptr<const LocalMap>;
+
+}  // namespace aavio::mapping

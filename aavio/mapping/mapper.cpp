@@ -1,0 +1,188 @@
+#include "aavio/mapping/mapper.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+
+#include "aavio/mapping/depth_refinement.hpp"
+#include "aavio/mapping/sgm_bootstrap.hpp"
+#include "aavio/mapping/static_stereo.hpp"
+#include "aavio/mapping/temporal_stereo.hpp"
+
+namespace aavio::mapping {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double MsSince(Clock::time_point t) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
+}
+
+cv::Mat ToFloat(const cv::Mat& image, bool smooth) {
+  cv::Mat out;
+  if (smooth) {
+    cv::Mat blurred;
+    cv::GaussianBlur(image, blurred, cv::Size(5, 5), 0.0, 0.0, cv::BORDER_REFLECT_101);
+    blurred.convertTo(out, CV_32F);
+  } else {
+    image.convertTo(out, CV_32F);
+  }
+  return out;
+}
+
+// Samples used this cycle: at most max_points (evenly strided, order kept), away from the border
+// (8 px top/left, 4 px bottom/right, in raw and rectified coordinates, as the reference).
+std::vector<events::EdgeSample> UsableSamples(const events::Observation& obs, int width, int height,
+                                              int max_points) {
+  auto inside = [&](double x, double y) {
+    return x >= 8 && y >= 8 && x < width - 4 && y < height - 4;
+  };
+  std::vector<events::EdgeSample> kept;
+  for (const events::EdgeSample& s : obs.samples) {
+    if (inside(s.x, s.y) && inside(s.u, s.v)) kept.push_back(s);
+  }
+  if (static_cast<int>(kept.size()) <= max_points) return kept;
+  std::vector<events::EdgeSample> strided;
+  strided.reserve(static_cast<std::size_t>(max_points));
+  for (int i = 0; i < max_points; ++i)
+    strided.push_back(kept[static_cast<std::size_t>(i) * kept.size() / max_points]);
+  return strided;
+}
+
+}  // namespace
+
+const PosedObservation* FindTemporalPartner(std::span<const PosedObservation> history,
+                                            const geometry::RigidTransform& T_world_now,
+                                            double min_translation_m) {
+  for (auto it = history.rbegin(); it != history.rend(); ++it) {
+    if ((it->T_world_obs.t - T_world_now.t).norm() >= min_translation_m) return &*it;
+  }
+  return nullptr;
+}
+
+Mapper::Mapper(const RectifiedStereo& stereo, const cv::Mat& valid_mask,
+               const MappingConfig& config)
+    : stereo_(stereo), valid_mask_(valid_mask), config_(config), fusion_(stereo, config) {}
+
+void Mapper::Reset() {
+  fusion_.Clear();
+  initialized_ = false;
+  local_map_.reset();
+}
+
+void Mapper::Publish(const DepthMap& map) {
+  auto local = std::make_shared<LocalMap>();
+  local->t_ns = map.t_ns();
+  local->T_world_ref = map.T_world_frame();
+  local->points = map.Points();
+  local->points_world.reserve(local->points.size());
+  for (const DepthPoint& p : local->points)
+    local->points_world.push_back(map.T_world_frame() * p.Point(stereo_));
+  local_map_ = std::move(local);
+}
+
+Status Mapper::Initialize(const PosedObservation& now) {
+  std::vector<Eigen::Vector2f> positions;
+  for (const events::EdgeSample& s : now.obs->samples)
+    positions.emplace_back(s.u, s.v);
+  Expected<std::vector<DepthPoint>> points =
+      BootstrapWithSgm(now.obs->ts_left, now.obs->ts_right, positions, stereo_, config_);
+  if (!points) return points.status();
+  fusion_.Clear();
+  DepthMap map(stereo_, now.T_world_obs, now.obs->t_ns);
+  for (const DepthPoint& p : *points)
+    map.InsertNaive(p);
+  fusion_.Add(StereoKind::kStatic, {now.obs->t_ns, now.T_world_obs, std::move(*points)});
+  Publish(map);
+  initialized_ = true;
+  return Status::Ok();
+}
+
+Status Mapper::Update(const PosedObservation& now, const PosedObservation* partner,
+                      MappingCycleReport* report) {
+  const auto start = Clock::now();
+  *report = MappingCycleReport{};
+  const events::Observation& obs = *now.obs;
+  const std::vector<events::EdgeSample> samples =
+      UsableSamples(obs, stereo_.width, stereo_.height, config_.max_points);
+  report->samples = static_cast<int>(samples.size());
+  if (report->samples < config_.min_points) {
+    report->total_ms = MsSince(start);
+    return Status::Ok();  // too little to map this cycle; the old map stays published
+  }
+
+  // η split (algorithm.md §4.2): |g_u| / |g_v| < η → near-horizontal edge → temporal stereo.
+  const bool temporal = config_.temporal_stereo.enabled;
+  report->has_partner = partner != nullptr;
+  std::vector<Eigen::Vector2f> static_group, temporal_group;
+  std::vector<char> static_horizontal;
+  for (const events::EdgeSample& s : samples) {
+    const int u = static_cast<int>(std::lround(s.u)), v = static_cast<int>(std::lround(s.v));
+    double gu = std::abs(obs.grad_u.at<float>(v, u)), gv = std::abs(obs.grad_v.at<float>(v, u));
+    if (gu <= 0.01) gu = 0.1;
+    if (gv <= 0.01) gv = 0.1;
+    const bool horizontal = gu / gv < config_.eta;
+    if (horizontal && temporal) {
+      if (partner != nullptr) temporal_group.emplace_back(s.u, s.v);
+    } else {
+      static_group.emplace_back(s.u, s.v);
+      static_horizontal.push_back(horizontal ? 1 : 0);
+    }
+  }
+  report->static_candidates = static_cast<int>(static_group.size());
+  report->temporal_candidates = static_cast<int>(temporal_group.size());
+
+  // Matching.
+  auto t = Clock::now();
+  const bool smooth = config_.static_stereo.smooth_time_surface;
+  const cv::Mat left = ToFloat(obs.ts_left, smooth), right = ToFloat(obs.ts_right, smooth);
+  std::vector<Match> matches =
+      MatchStatic({left, right, valid_mask_}, static_group, stereo_, config_);
+  // Remember which static matches sit on near-horizontal edges (for the evaluation split).
+  {
+    std::size_t k = 0;
+    for (std::size_t i = 0; i < static_group.size() && k < matches.size(); ++i) {
+      if (static_group[i].x() == matches[k].u && static_group[i].y() == matches[k].v) {
+        matches[k++].near_horizontal = static_horizontal[i] != 0;
+      }
+    }
+  }
+  report->static_matches = static_cast<int>(matches.size());
+  cv::Mat aa_now, aa_past;
+  geometry::RigidTransform T_past_now;
+  if (!temporal_group.empty()) {
+    aa_now = ToFloat(obs.aa_map, false);
+    aa_past = ToFloat(partner->obs->aa_map, false);
+    T_past_now = partner->T_world_obs.Inverse() * now.T_world_obs;
+    const std::vector<Match> temporal_matches =
+        MatchTemporal({aa_now, aa_past, T_past_now}, temporal_group, stereo_, config_);
+    report->temporal_matches = static_cast<int>(temporal_matches.size());
+    matches.insert(matches.end(), temporal_matches.begin(), temporal_matches.end());
+  }
+  report->matching_ms = MsSince(t);
+
+  // Refinement and culling.
+  t = Clock::now();
+  RefinementInput refine{left, right, aa_now.empty() ? nullptr : &aa_now,
+                         aa_past.empty() ? nullptr : &aa_past, T_past_now};
+  std::vector<DepthPoint> refined = RefineDepths(refine, matches, stereo_, config_);
+  report->refinement_ms = MsSince(t);
+
+  // Fusion: one batch per kind, then a new map at the current pose.
+  t = Clock::now();
+  DepthBatch static_batch{obs.t_ns, now.T_world_obs, {}},
+      temporal_batch{obs.t_ns, now.T_world_obs, {}};
+  for (const DepthPoint& p : refined)
+    (p.kind == StereoKind::kStatic ? static_batch : temporal_batch).points.push_back(p);
+  report->static_points = static_cast<int>(static_batch.points.size());
+  report->temporal_points = static_cast<int>(temporal_batch.points.size());
+  fusion_.Add(StereoKind::kStatic, std::move(static_batch));
+  if (!temporal_batch.points.empty()) fusion_.Add(StereoKind::kTemporal, std::move(temporal_batch));
+  const DepthMap map = fusion_.Fuse(now.T_world_obs, obs.t_ns);
+  Publish(map);
+  report->map_points = static_cast<int>(map.size());
+  report->fusion_ms = MsSince(t);
+  report->total_ms = MsSince(start);
+  return Status::Ok();
+}
+
+}  // namespace aavio::mapping

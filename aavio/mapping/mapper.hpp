@@ -1,0 +1,68 @@
+#pragma once
+/// One mapping cycle (algorithm.md §4.1): the current observation's edge samples are split by the
+/// gradient ratio η into a static group (left/right TS matching) and a near-horizontal temporal
+/// group (AA now vs AA of a partner observation), refined, pushed as batches into the fusion
+/// FIFO, and fused into a new map at the current pose, published as an immutable LocalMap.
+/// The first map comes from SGM (Initialize); Reset forgets everything so that the caller can
+/// initialise again at the last good pose.
+
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "aavio/common/status.hpp"
+#include "aavio/events/observation.hpp"
+#include "aavio/geometry/rigid_transform.hpp"
+#include "aavio/mapping/depth_fusion.hpp"
+#include "aavio/mapping/local_map.hpp"
+#include "aavio/mapping/mapping_config.hpp"
+
+namespace aavio::mapping {
+
+struct PosedObservation {
+  std::shared_ptr<const events::Observation> obs;
+  geometry::RigidTransform T_world_obs;
+};
+
+/// The newest observation of `history` (oldest first) whose camera centre is at least
+/// `min_translation_m` from T_world_now's; nullptr if none.
+const PosedObservation* FindTemporalPartner(std::span<const PosedObservation> history,
+                                            const geometry::RigidTransform& T_world_now,
+                                            double min_translation_m);
+
+struct MappingCycleReport {
+  int samples = 0;  ///< edge samples considered (after the cap and the border)
+  int static_candidates = 0, temporal_candidates = 0;
+  int static_matches = 0, temporal_matches = 0;
+  int static_points = 0, temporal_points = 0;  ///< after refinement and culling
+  int map_points = 0;
+  bool has_partner = false;
+  double matching_ms = 0.0, refinement_ms = 0.0, fusion_ms = 0.0, total_ms = 0.0;
+};
+
+class Mapper {
+ public:
+  Mapper(const RectifiedStereo& stereo, const cv::Mat& valid_mask, const MappingConfig& config);
+
+  bool initialized() const { return initialized_; }
+  /// SGM on the observation's TS pair at its pose; FailedPrecondition if too few points.
+  Status Initialize(const PosedObservation& now);
+  /// A mapping cycle; `partner` may be null (no temporal stereo this cycle).
+  Status Update(const PosedObservation& now, const PosedObservation* partner,
+                MappingCycleReport* report);
+  void Reset();
+
+  LocalMapPtr local_map() const { return local_map_; }
+
+ private:
+  void Publish(const DepthMap& map);
+
+  RectifiedStereo stereo_;
+  cv::Mat valid_mask_;
+  MappingConfig config_;
+  DepthFusion fusion_;
+  bool initialized_ = false;
+  LocalMapPtr local_map_;
+};
+
+}  // namespace aavio::mapping

@@ -1,0 +1,59 @@
+#include "aavio/mapping/sgm_bootstrap.hpp"
+
+#include <cmath>
+#include <opencv2/calib3d.hpp>
+
+#include "aavio/common/format.hpp"
+#include "aavio/mapping/static_stereo.hpp"
+
+namespace aavio::mapping {
+
+Expected<std::vector<DepthPoint>> BootstrapWithSgm(const cv::Mat& ts_left, const cv::Mat& ts_right,
+                                                   std::span<const Eigen::Vector2f> points,
+                                                   const RectifiedStereo& stereo,
+                                                   const MappingConfig& config) {
+  const BootstrapConfig& b = config.bootstrap;
+  const DisparityRange range = StaticDisparityRange(stereo, config);
+  // OpenCV wants a positive multiple of 16 disparities, starting at 0.
+  const int disparities = std::max(16, (range.max + 15) / 16 * 16);
+  const int area = b.block_size * b.block_size;
+  cv::Ptr<cv::StereoSGBM> sgm = cv::StereoSGBM::create(
+      0, disparities, b.block_size, 8 * area, 32 * area, /*disp12MaxDiff=*/-1,
+      /*preFilterCap=*/0, b.uniqueness_ratio, /*speckleWindowSize=*/0, /*speckleRange=*/0,
+      cv::StereoSGBM::MODE_SGBM);
+  cv::Mat disparity;  // CV_16S, disparity × 16
+  sgm->compute(ts_left, ts_right, disparity);
+  const double sigma2 = b.inv_depth_stddev * b.inv_depth_stddev;
+  const double nu = config.depth_refinement.student_t_nu;
+  std::vector<DepthPoint> out;
+  std::vector<char> taken(static_cast<std::size_t>(stereo.width) * stereo.height, 0);
+  for (const Eigen::Vector2f& x : points) {
+    const int u = static_cast<int>(std::floor(x.x())), v = static_cast<int>(std::floor(x.y()));
+    if (u < 0 || v < 0 || u >= stereo.width || v >= stereo.height) continue;
+    char& t = taken[static_cast<std::size_t>(v) * stereo.width + u];
+    if (t) continue;
+    t = 1;
+    const short d16 = disparity.at<short>(v, u);
+    if (d16 <= 0) continue;  // invalid (negative) or infinitely far
+    const double rho = stereo.InvDepthOfDisparity(d16 / 16.0);
+    if (rho < config.inv_depth_min || rho > config.inv_depth_max) continue;
+    DepthPoint p;
+    p.u = static_cast<float>(u);
+    p.v = static_cast<float>(v);
+    p.rho = rho;
+    p.nu = nu;
+    p.s2 = sigma2 * (nu - 2.0) / nu;
+    p.residual = 0.0;
+    p.age = config.fusion.min_age;  // survives the first cleanings
+    out.push_back(p);
+  }
+  if (static_cast<int>(out.size()) < b.min_points) {
+    return FailedPrecondition(
+        StrFormat("SGM bootstrap found %zu points at the edge samples, fewer "
+                  "than mapping.bootstrap.min_points = %d",
+                  out.size(), b.min_points));
+  }
+  return out;
+}
+
+}  // namespace aavio::mapping

@@ -1,0 +1,105 @@
+#include "aavio/mapping/static_stereo.hpp"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "aavio/mapping/zncc.hpp"
+
+namespace aavio::mapping {
+
+DisparityRange StaticDisparityRange(const RectifiedStereo& stereo, const MappingConfig& config) {
+  DisparityRange r;
+  r.min = std::max(static_cast<int>(std::floor(stereo.Disparity(config.inv_depth_min))),
+                   config.static_stereo.min_disparity);
+  r.max = std::min(static_cast<int>(std::ceil(stereo.Disparity(config.inv_depth_max))),
+                   config.static_stereo.max_disparity);
+  return r;
+}
+
+namespace {
+
+// Share of the patch below 1 (an empty time surface there).
+bool EmptyPatch(const float* top_left, int stride, int rows, int cols, double max_fraction) {
+  int low = 0;
+  for (int r = 0; r < rows; ++r) {
+    for (int c = 0; c < cols; ++c)
+      low += top_left[r * stride + c] < 1.0f ? 1 : 0;
+  }
+  return low > max_fraction * rows * cols;
+}
+
+bool MatchOne(const StaticStereoInput& in, const Eigen::Vector2f& x, const RectifiedStereo& stereo,
+              const MappingConfig& config, const DisparityRange& range, Match* out) {
+  const StaticStereoConfig& c = config.static_stereo;
+  const int hw = c.patch_width / 2, hh = c.patch_height / 2;
+  const int u = static_cast<int>(std::lround(x.x())), v = static_cast<int>(std::lround(x.y()));
+  const int w = in.left.cols, h = in.left.rows;
+  // The patch may not touch the outermost rows/columns (bilinear access later).
+  if (u - hw < 1 || u + hw > w - 2 || v - hh < 1 || v + hh > h - 2) return false;
+  if (in.valid_mask.at<std::uint8_t>(v, u) <= 125) return false;
+  const int stride = static_cast<int>(in.left.step1());
+  const float* left = in.left.ptr<float>(v - hh) + (u - hw);
+  if (EmptyPatch(left, stride, c.patch_height, c.patch_width, c.empty_patch_fraction)) return false;
+  NormalizedPatch patch;
+  if (!PreparePatch(left, stride, c.patch_height, c.patch_width, &patch)) return false;
+  // Disparities whose right patch lies inside the image.
+  const int d_lo = range.min, d_hi = std::min(range.max, u - hw - 1);
+  if (d_hi < d_lo) return false;
+  const float* right_row = in.right.ptr<float>(v - hh);
+  auto cost = [&](int d) { return ZnccCost(patch, right_row + (u - d - hw), stride); };
+  const double theta = c.zncc_threshold;
+  const int step = std::max(1, c.step);
+  double best = 1.0;
+  int best_d = -1;
+  if (step == 1) {
+    for (int d = d_lo; d <= d_hi; ++d) {
+      const double e = cost(d);
+      if (e < best) best = e, best_d = d;
+    }
+  } else {
+    // Coarse pass; every coarse disparity within 1.035θ marks its ±(step − 1) neighbours.
+    std::vector<char> marked(static_cast<std::size_t>(d_hi - d_lo + 1), 0);
+    double coarse_best = 1.0;
+    for (int d = d_lo; d <= d_hi; d += step) {
+      const double e = cost(d);
+      coarse_best = std::min(coarse_best, e);
+      if (e <= 1.035 * theta) {
+        for (int k = std::max(d_lo, d - step + 1); k <= std::min(d_hi, d + step - 1); ++k)
+          marked[static_cast<std::size_t>(k - d_lo)] = 1;
+      }
+    }
+    if (coarse_best >= 1.03 * theta) return false;
+    for (int d = d_lo; d <= d_hi; ++d) {
+      if (!marked[static_cast<std::size_t>(d - d_lo)]) continue;
+      const double e = cost(d);
+      if (e < best) best = e, best_d = d;
+    }
+  }
+  if (best_d < 0 || best > 1.02 * theta) return false;
+  const double rho = stereo.InvDepthOfDisparity(best_d);
+  if (!(rho > 0.0) || rho < config.inv_depth_min || rho > config.inv_depth_max) return false;
+  *out = {x.x(), x.y(), rho, best, StereoKind::kStatic, false};
+  return true;
+}
+
+}  // namespace
+
+std::vector<Match> MatchStatic(const StaticStereoInput& input,
+                               std::span<const Eigen::Vector2f> points,
+                               const RectifiedStereo& stereo, const MappingConfig& config) {
+  const DisparityRange range = StaticDisparityRange(stereo, config);
+  std::vector<Match> results(points.size());
+  std::vector<char> ok(points.size(), 0);
+  tbb::parallel_for(std::size_t{0}, points.size(), [&](std::size_t i) {
+    ok[i] = MatchOne(input, points[i], stereo, config, range, &results[i]) ? 1 : 0;
+  });
+  std::vector<Match> matches;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (ok[i]) matches.push_back(results[i]);
+  }
+  return matches;
+}
+
+}  // namespace aavio::mapping

@@ -1,0 +1,141 @@
+#include <gtest/gtest.h>
+
+#include "aavio/mapping/depth_refinement.hpp"
+#include "aavio/mapping/mapping_test_utils.hpp"
+#include "aavio/mapping/static_stereo.hpp"
+#include "aavio/mapping/temporal_stereo.hpp"
+#include "aavio/mapping/zncc.hpp"
+
+namespace aavio::mapping {
+namespace {
+
+MappingConfig Config() {
+  MappingConfig c;
+  c.inv_depth_min = 0.001;
+  c.inv_depth_max = 0.25;  // disparity ≤ 80 px with f b = 321.6
+  return c;
+}
+
+TEST(Zncc, CostOfEqualOppositeAndFlatPatches) {
+  const cv::Mat a = testing::Texture(20, 10, 1);
+  NormalizedPatch p;
+  ASSERT_TRUE(PreparePatch(a.ptr<float>(), static_cast<int>(a.step1()), 7, 15, &p));
+  EXPECT_NEAR(ZnccCost(p, a.ptr<float>(), static_cast<int>(a.step1())), 0.0, 1e-6);
+  const cv::Mat inverted = 300.0f - a;  // anti-correlated, similar mean
+  EXPECT_NEAR(ZnccCost(p, inverted.ptr<float>(), static_cast<int>(a.step1())), 1.0, 1e-6);
+  const cv::Mat flat(10, 20, CV_32FC1, cv::Scalar(100));
+  EXPECT_DOUBLE_EQ(ZnccCost(p, flat.ptr<float>(), static_cast<int>(flat.step1())), 0.5);
+}
+
+TEST(StaticStereo, FindsTheShiftOfATexture) {
+  const RectifiedStereo stereo = testing::SmallStereo();
+  const cv::Mat left = testing::Texture(160, 120, 2);
+  const cv::Mat right = testing::Shifted(left, 12.0, 0.0);  // right(x) = left(x + 12): d = 12
+  const cv::Mat valid(120, 160, CV_8UC1, cv::Scalar(255));
+  MappingConfig config = Config();
+  std::vector<Eigen::Vector2f> points;
+  for (int v = 20; v < 100; v += 9)
+    for (int u = 40; u < 140; u += 11)
+      points.emplace_back(u, v);
+  for (const int step : {1, 3}) {
+    config.static_stereo.step = step;
+    const std::vector<Match> matches = MatchStatic({left, right, valid}, points, stereo, config);
+    EXPECT_GT(matches.size(), points.size() * 9 / 10) << "step " << step;
+    for (const Match& m : matches) {
+      EXPECT_NEAR(stereo.Disparity(m.rho), 12.0, 1e-9);
+      EXPECT_LT(m.cost, 0.01);
+    }
+  }
+  // A flat right image matches nothing.
+  const cv::Mat flat(120, 160, CV_32FC1, cv::Scalar(50));
+  EXPECT_TRUE(MatchStatic({left, flat, valid}, points, stereo, config).empty());
+}
+
+TEST(StaticStereo, DisparityRangeFollowsTheDepthRange) {
+  const RectifiedStereo stereo = testing::SmallStereo();
+  MappingConfig config = Config();
+  const DisparityRange r = StaticDisparityRange(stereo, config);
+  EXPECT_EQ(r.min, 0);
+  EXPECT_EQ(r.max, 81);  // ⌈321.6 · 0.25⌉
+  config.static_stereo.max_disparity = 40;
+  EXPECT_EQ(StaticDisparityRange(stereo, config).max, 40);
+}
+
+TEST(TemporalStereo, TriangulatesAKnownPoint) {
+  const RectifiedStereo stereo = testing::SmallStereo();
+  const Eigen::Vector3d p_now(1.0, -0.5, 12.0);
+  geometry::RigidTransform T_past_now;
+  T_past_now.t = {0.1, 0.4, -0.3};
+  T_past_now.R = Eigen::AngleAxisd(0.05, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  double u0, v0, u1, v1;
+  ASSERT_TRUE(stereo.Project(p_now, &u0, &v0));
+  ASSERT_TRUE(stereo.Project(T_past_now * p_now, &u1, &v1));
+  EXPECT_NEAR(TriangulateDepth(stereo, {u0, v0}, {u1, v1}, T_past_now), 12.0, 1e-9);
+}
+
+TEST(TemporalStereo, MatchesHorizontalEdgesAlongTheEpipolarSegment) {
+  // A fronto-parallel plane at 10 m; the camera moved 0.3 m down (+y) since the past view, so the
+  // plane appears f·0.3/10 = 16.08 px lower now. Stripes are horizontal (what temporal stereo is
+  // for), with some texture so that the match is unique.
+  const RectifiedStereo stereo = testing::SmallStereo();
+  cv::Mat aa_now = testing::Texture(160, 120, 3);
+  for (int y = 0; y < 120; ++y) {
+    if (y % 13 < 2) aa_now.row(y).setTo(255.0f);
+  }
+  geometry::RigidTransform T_past_now;
+  T_past_now.t = {0.0, 0.3, 0.0};  // p_past = p_now + (0, 0.3, 0)
+  const double shift = stereo.f * 0.3 / 10.0;
+  const cv::Mat aa_past = testing::Shifted(aa_now, 0.0, -shift);  // past(y + shift) = now(y)
+  std::vector<Eigen::Vector2f> points;
+  for (int v = 30; v < 90; v += 7)
+    for (int u = 40; u < 120; u += 13)
+      points.emplace_back(u, v);
+  MappingConfig config = Config();
+  const std::vector<Match> matches =
+      MatchTemporal({aa_now, aa_past, T_past_now}, points, stereo, config);
+  ASSERT_GT(matches.size(), points.size() / 2);
+  for (const Match& m : matches) {
+    EXPECT_EQ(m.kind, StereoKind::kTemporal);
+    EXPECT_NEAR(1.0 / m.rho, 10.0, 10.0 * 0.5 / shift);  // within half a pixel of parallax
+  }
+}
+
+TEST(DepthRefinement, RecoversSubPixelDisparityAndItsUncertainty) {
+  const RectifiedStereo stereo = testing::SmallStereo();
+  const double d = 20.37;
+  const cv::Mat left = testing::WaveTexture(160, 120, 4);
+  const cv::Mat right = testing::WaveTexture(160, 120, 4, d, 0.0);  // exact sub-pixel shift
+  const MappingConfig config = Config();
+  std::vector<Match> matches;
+  for (int v = 20; v < 100; v += 10)
+    for (int u = 50; u < 140; u += 10)
+      matches.push_back({static_cast<float>(u), static_cast<float>(v),
+                         stereo.InvDepthOfDisparity(20.0), 0.01, StereoKind::kStatic, false});
+  const std::vector<DepthPoint> refined =
+      RefineDepths({left, right, nullptr, nullptr, {}}, matches, stereo, config);
+  ASSERT_GT(refined.size(), matches.size() * 9 / 10);
+  for (const DepthPoint& p : refined) {
+    EXPECT_NEAR(stereo.Disparity(p.rho), d, 0.03);  // bilinear interpolation bias only
+    EXPECT_GT(p.variance(), 0.0);
+    EXPECT_LT(std::sqrt(p.variance()), 0.01);  // a fraction of a pixel of disparity
+  }
+  // max_iterations = 0: ρ stays, only σ is evaluated (ESVO2).
+  MappingConfig variance_only = config;
+  variance_only.depth_refinement.max_iterations = 0;
+  const std::vector<DepthPoint> kept =
+      RefineDepths({left, right, nullptr, nullptr, {}}, matches, stereo, variance_only);
+  ASSERT_FALSE(kept.empty());
+  EXPECT_DOUBLE_EQ(kept[0].rho, matches[0].rho);
+}
+
+TEST(DepthRefinement, StudentTScaleIgnoresZerosAndShrinksForSmallResiduals) {
+  const std::vector<float> small = {1, -1, 2, -2, 0, 0, 1};
+  const std::vector<float> large = {40, -30, 50, -60, 0, 35};
+  const double s2 = 17.277 * 17.277;
+  EXPECT_LT(StudentTScale2(small, 2.182, s2), 10.0);
+  EXPECT_GT(StudentTScale2(large, 2.182, s2), StudentTScale2(small, 2.182, s2));
+  EXPECT_DOUBLE_EQ(StudentTScale2(std::vector<float>{0, 0}, 2.182, s2), s2);
+}
+
+}  // namespace
+}  // namespace aavio::mapping

@@ -1,0 +1,111 @@
+#include "aavio/mapping/temporal_stereo.hpp"
+
+#include <tbb/parallel_for.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+
+#include "aavio/mapping/zncc.hpp"
+
+namespace aavio::mapping {
+
+void TemporalInvDepthRange(const MappingConfig& config, double* rho_lo, double* rho_hi) {
+  const TemporalStereoConfig& t = config.temporal_stereo;
+  *rho_lo = std::max(config.inv_depth_min, 1.0 / t.max_depth_m);
+  *rho_hi = std::min(config.inv_depth_max, 1.0 / t.min_depth_m);
+}
+
+double TriangulateDepth(const RectifiedStereo& stereo, const Eigen::Vector2d& x_now,
+                        const Eigen::Vector2d& x_past, const geometry::RigidTransform& T_past_now) {
+  // Rays in the current frame: a = λ r_now, b = c_past + μ R_now_past r_past.
+  const Eigen::Vector3d r_now((x_now.x() - stereo.cx_left) / stereo.f,
+                              (x_now.y() - stereo.cy) / stereo.f, 1.0);
+  const Eigen::Vector3d r_past_local((x_past.x() - stereo.cx_left) / stereo.f,
+                                     (x_past.y() - stereo.cy) / stereo.f, 1.0);
+  const geometry::RigidTransform T_now_past = T_past_now.Inverse();
+  const Eigen::Vector3d r_past = T_now_past.R * r_past_local;
+  const Eigen::Vector3d c = T_now_past.t;
+  // Least squares λ r_now − μ r_past = c.
+  Eigen::Matrix<double, 3, 2> A;
+  A.col(0) = r_now;
+  A.col(1) = -r_past;
+  const Eigen::Matrix2d AtA = A.transpose() * A;
+  if (std::abs(AtA.determinant()) < 1e-12) return -1.0;
+  const Eigen::Vector2d lm = AtA.ldlt().solve(A.transpose() * c);
+  if (lm.x() <= 0.0 || lm.y() <= 0.0) return -1.0;
+  return lm.x();  // r_now has z = 1, so λ is the depth
+}
+
+namespace {
+
+bool MatchOne(const TemporalStereoInput& in, const Eigen::Vector2f& x,
+              const RectifiedStereo& stereo, const MappingConfig& config, double rho_lo,
+              double rho_hi, Match* out) {
+  const TemporalStereoConfig& t = config.temporal_stereo;
+  const int hr = t.patch_rows / 2, hc = t.patch_cols / 2;
+  const int w = in.aa_now.cols, h = in.aa_now.rows;
+  const int u = static_cast<int>(std::lround(x.x())), v = static_cast<int>(std::lround(x.y()));
+  if (u - hc < 0 || u + hc >= w || v - hr < 0 || v + hr >= h) return false;
+  const int stride = static_cast<int>(in.aa_now.step1());
+  const float* source = in.aa_now.ptr<float>(v - hr) + (u - hc);
+  // A patch with (almost) nothing accumulated carries no structure.
+  int empty = 0;
+  for (int r = 0; r < t.patch_rows; ++r) {
+    for (int c = 0; c < t.patch_cols; ++c)
+      empty += source[r * stride + c] < 1.0f ? 1 : 0;
+  }
+  if (empty > config.static_stereo.empty_patch_fraction * t.patch_rows * t.patch_cols) return false;
+  NormalizedPatch patch;
+  if (!PreparePatch(source, stride, t.patch_rows, t.patch_cols, &patch)) return false;
+
+  // The epipolar segment: projections of the farthest and the nearest allowed depth.
+  double u_far, v_far, u_near, v_near;
+  if (!stereo.Project(in.T_past_now * stereo.Backproject(x.x(), x.y(), rho_lo), &u_far, &v_far) ||
+      !stereo.Project(in.T_past_now * stereo.Backproject(x.x(), x.y(), rho_hi), &u_near, &v_near)) {
+    return false;
+  }
+  const double du = u_near - u_far, dv = v_near - v_far;
+  const int steps = static_cast<int>(std::ceil(std::max(std::abs(du), std::abs(dv))));
+  if (steps < 1) return false;  // no parallax: the views are too close for this pixel
+  double best = 1.0;
+  Eigen::Vector2d best_x(0.0, 0.0);
+  for (int k = 0; k <= steps; ++k) {
+    const double s = static_cast<double>(k) / steps;
+    const int uc = static_cast<int>(std::lround(u_far + s * du));
+    const int vc = static_cast<int>(std::lround(v_far + s * dv));
+    if (uc - hc < 0 || uc + hc >= w || vc - hr < 0 || vc + hr >= h) continue;
+    const double e = ZnccCost(patch, in.aa_past.ptr<float>(vc - hr) + (uc - hc), stride);
+    if (e > 0.0 && e < best) best = e, best_x = {uc, vc};  // exact zeros are ignored (reference)
+  }
+  if (best >= t.threshold_factor * config.static_stereo.zncc_threshold) return false;
+  const double z = TriangulateDepth(stereo, {x.x(), x.y()}, best_x, in.T_past_now);
+  if (z < t.min_depth_m || z > t.max_depth_m) return false;
+  const double rho = 1.0 / z;
+  if (rho < config.inv_depth_min || rho > config.inv_depth_max) return false;
+  *out = {x.x(), x.y(), rho, best, StereoKind::kTemporal, true};
+  return true;
+}
+
+}  // namespace
+
+std::vector<Match> MatchTemporal(const TemporalStereoInput& input,
+                                 std::span<const Eigen::Vector2f> points,
+                                 const RectifiedStereo& stereo, const MappingConfig& config) {
+  double rho_lo, rho_hi;
+  TemporalInvDepthRange(config, &rho_lo, &rho_hi);
+  std::vector<Match> results(points.size());
+  std::vector<char> ok(points.size(), 0);
+  if (rho_lo < rho_hi) {
+    tbb::parallel_for(std::size_t{0}, points.size(), [&](std::size_t i) {
+      ok[i] = MatchOne(input, points[i], stereo, config, rho_lo, rho_hi, &results[i]) ? 1 : 0;
+    });
+  }
+  std::vector<Match> matches;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (ok[i]) matches.push_back(results[i]);
+  }
+  return matches;
+}
+
+}  // namespace aavio::mapping

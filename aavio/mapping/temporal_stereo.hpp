@@ -1,0 +1,36 @@
+#pragma once
+/// Temporal stereo (algorithm.md §4.4): an edge pixel of the current AA map is searched in the
+/// AA map of an earlier observation, along the exact epipolar segment between the projections of
+/// the nearest and farthest allowed depth (not the reference code's fixed −10…70 px), with a
+/// wide flat patch (5 rows × 31 columns) suited to edges parallel to the baseline; the best match
+/// under threshold_factor·θ is triangulated (midpoint of the two rays) and gated by depth.
+
+#include <opencv2/core/mat.hpp>
+#include <span>
+#include <vector>
+
+#include "aavio/geometry/rigid_transform.hpp"
+#include "aavio/mapping/mapping_config.hpp"
+#include "aavio/mapping/rectified_stereo.hpp"
+
+namespace aavio::mapping {
+
+struct TemporalStereoInput {
+  const cv::Mat& aa_now;   ///< CV_32FC1 AA map of the current observation
+  const cv::Mat& aa_past;  ///< CV_32FC1 AA map of the partner observation
+  const geometry::RigidTransform& T_past_now;
+};
+
+/// The inverse-depth interval temporal stereo searches: the configured range ∩ the depth gate.
+void TemporalInvDepthRange(const MappingConfig& config, double* rho_lo, double* rho_hi);
+
+/// Depth of a left pixel seen at `x_past` in the partner view (midpoint triangulation); ≤ 0 if
+/// the rays do not meet in front of both cameras.
+double TriangulateDepth(const RectifiedStereo& stereo, const Eigen::Vector2d& x_now,
+                        const Eigen::Vector2d& x_past, const geometry::RigidTransform& T_past_now);
+
+std::vector<Match> MatchTemporal(const TemporalStereoInput& input,
+                                 std::span<const Eigen::Vector2f> points,
+                                 const RectifiedStereo& stereo, const MappingConfig& config);
+
+}  // namespace aavio::mapping
