@@ -12,10 +12,7 @@
 
 namespace aavio::sim {
 
-cv::Mat EdgeTruthMask(const SimulationWorld& world, TimeNs t_ns, const EdgeTruthConfig& config) {
-  const Renderer renderer(world.rig.left());
-  RenderedImage image;
-  renderer.Render(world.scene, world.T_world_camera(0, t_ns), &image);
+cv::Mat EdgeLabels(const RenderedImage& image, const EdgeTruthConfig& config, double eta) {
   const int w = image.width, h = image.height;
   cv::Mat log_i(h, w, CV_32FC1), depth(h, w, CV_32FC1);
   for (int i = 0; i < w * h; ++i) {
@@ -27,16 +24,28 @@ cv::Mat EdgeTruthMask(const SimulationWorld& world, TimeNs t_ns, const EdgeTruth
   cv::Sobel(log_i, gy, CV_32F, 0, 1, 3, 1.0 / 8.0, 0.0, cv::BORDER_REPLICATE);
   cv::Sobel(depth, dx, CV_32F, 1, 0, 3, 1.0 / 8.0, 0.0, cv::BORDER_REPLICATE);
   cv::Sobel(depth, dy, CV_32F, 0, 1, 3, 1.0 / 8.0, 0.0, cv::BORDER_REPLICATE);
-  cv::Mat edges(h, w, CV_8UC1, cv::Scalar(0));
+  cv::Mat labels(h, w, CV_8UC1, cv::Scalar(0));
   for (int y = 0; y < h; ++y) {
     for (int x = 0; x < w; ++x) {
-      const double g = std::hypot(gx.at<float>(y, x), gy.at<float>(y, x));
-      const double z = depth.at<float>(y, x);
-      const double dz = std::hypot(dx.at<float>(y, x), dy.at<float>(y, x));
+      const double gu = gx.at<float>(y, x), gv = gy.at<float>(y, x);
+      const double du = dx.at<float>(y, x), dv = dy.at<float>(y, x);
+      const double z = depth.at<float>(y, x), dz = std::hypot(du, dv);
       const bool depth_edge = z <= 0.0 ? dz > 0.0 : dz / z > config.min_depth_step;
-      if (g > config.min_log_gradient || depth_edge) edges.at<std::uint8_t>(y, x) = 255;
+      const bool texture_edge = std::hypot(gu, gv) > config.min_log_gradient;
+      if (!depth_edge && !texture_edge) continue;
+      const bool horizontal =
+          texture_edge ? std::abs(gu) < eta * std::abs(gv) : std::abs(du) < eta * std::abs(dv);
+      labels.at<std::uint8_t>(y, x) = horizontal ? kNearHorizontalEdge : kEdge;
     }
   }
+  return labels;
+}
+
+cv::Mat EdgeTruthMask(const SimulationWorld& world, TimeNs t_ns, const EdgeTruthConfig& config) {
+  const Renderer renderer(world.rig.left());
+  RenderedImage image;
+  renderer.Render(world.scene, world.T_world_camera(0, t_ns), &image);
+  cv::Mat edges = EdgeLabels(image, config) > 0;
   if (config.tolerance_px > 0) {
     const int k = 2 * config.tolerance_px + 1;
     cv::dilate(edges, edges, cv::getStructuringElement(cv::MORPH_RECT, cv::Size(k, k)));

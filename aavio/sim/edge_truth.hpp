@@ -9,6 +9,7 @@
 
 #include "aavio/events/edge_sampler.hpp"
 #include "aavio/events/representation_builder.hpp"
+#include "aavio/sim/renderer.hpp"
 #include "aavio/sim/world.hpp"
 
 namespace aavio::sim {
@@ -18,6 +19,12 @@ struct EdgeTruthConfig {
   double min_depth_step = 0.05;    ///< relative depth change per pixel that makes an edge
   int tolerance_px = 1;            ///< edges are dilated by this much (events blur ±1 px)
 };
+
+/// Edge labels of a rendered image (no dilation): 0 none, kEdge, or kNearHorizontalEdge where the
+/// edge's gradient is nearly vertical (|g_u| < eta·|g_v|: the edge runs along the baseline, the
+/// case temporal stereo is for). Depth edges use the depth gradient's direction.
+constexpr std::uint8_t kEdge = 128, kNearHorizontalEdge = 255;
+cv::Mat EdgeLabels(const RenderedImage& image, const EdgeTruthConfig& config, double eta = 0.2);
 
 /// CV_8UC1 over the raw left image at t_ns: 255 on edges (dilated), 0 elsewhere.
 cv::Mat EdgeTruthMask(const SimulationWorld& world, TimeNs t_ns, const EdgeTruthConfig& config);

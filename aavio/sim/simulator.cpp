@@ -16,6 +16,7 @@
 #include "aavio/io/sequence.hpp"
 #include "aavio/io/sequence_writer.hpp"
 #include "aavio/io/trajectory_io.hpp"
+#include "aavio/sim/edge_truth.hpp"
 #include "aavio/sim/event_simulation.hpp"
 #include "aavio/sim/imu_synthesis.hpp"
 #include "aavio/sim/motion_spline.hpp"
@@ -181,7 +182,9 @@ Expected<SimulationReport> Simulate(const SimulationRequest& request,
     }
     const std::string index = StrFormat("%06lld", static_cast<long long>(report.depth_maps));
     if (!cv::imwrite((out / "depth" / ("disparity_" + index + ".png")).string(), disparity) ||
-        !cv::imwrite((out / "depth" / ("depth_" + index + ".tiff")).string(), depth)) {
+        !cv::imwrite((out / "depth" / ("depth_" + index + ".tiff")).string(), depth) ||
+        !cv::imwrite((out / "depth" / ("edges_" + index + ".png")).string(),
+                     EdgeLabels(d, EdgeTruthConfig{}))) {
       return IoError((out / "depth").string() + ": cannot write the ground-truth maps");
     }
     if (request.preview && report.depth_maps == 0) {

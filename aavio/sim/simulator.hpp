@@ -4,7 +4,8 @@
 ///   sequence.yaml, calibration/{left,right}.yaml (ESVO style, with T_b_c),
 ///   events/{left,right}/events.h5 (or one events.bag, or events.txt), imu.txt,
 ///   groundtruth.txt (TUM, the rectified left camera in the world of its first pose),
-///   depth/ (rectified-left disparity ×256 as 16-bit PNG and metric depth as 32-bit TIFF, with
+///   depth/ (rectified-left disparity ×256 as 16-bit PNG, metric depth as 32-bit TIFF and edge
+///   labels as PNG — 0 none, 128 edge, 255 near-horizontal edge (sim/edge_truth.hpp) — with
 ///   timestamps.txt), scene.txt (the quads), and preview/ PNGs on request.
 
 #include <functional>

@@ -24,6 +24,7 @@ int RunCli(const std::vector<std::string>& args, std::ostream& out, std::ostream
   RegisterConvert(app, ctx);
   RegisterSimulate(app, ctx);
   RegisterRepresentations(app, ctx);
+  RegisterRun(app, ctx);
   RegisterPlanned(app, ctx);
 
   std::vector<std::string> reversed(args.rbegin(), args.rend() - (args.empty() ? 0 : 1));

@@ -14,7 +14,6 @@ void RegisterPlanned(CLI::App& app, Context& ctx) {
     const char* issue;
   };
   static const Planned kPlanned[] = {
-      {"run", "Run the odometry on a sequence", "#8"},
       {"eval", "Evaluate a trajectory (ATE, RPE) or a run against ground truth", "#9"},
       {"demo", "Simulate a short sequence, run, evaluate and print the result", "#8"},
       {"report", "Plots and a self-contained report.html of one or more runs", "#9"},

@@ -1,0 +1,74 @@
+#include "aavio/eval/depth_error.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <opencv2/imgproc.hpp>
+
+namespace aavio::eval {
+
+void DepthErrorAccumulator::Add(const std::vector<Eigen::Vector3d>& points_world,
+                                const cv::Mat& gt_depth_m, const cv::Mat& gt_edges,
+                                const geometry::RigidTransform& T_world_cam) {
+  ++frames_;
+  const geometry::RigidTransform T_cam_world = T_world_cam.Inverse();
+  cv::Mat covered(camera_.height, camera_.width, CV_8UC1, cv::Scalar(0));
+  for (const Eigen::Vector3d& pw : points_world) {
+    const Eigen::Vector3d p = T_cam_world * pw;
+    if (p.z() <= 1e-6) continue;
+    const double u = camera_.f * p.x() / p.z() + camera_.cx;
+    const double v = camera_.f * p.y() / p.z() + camera_.cy;
+    const int ui = static_cast<int>(std::lround(u)), vi = static_cast<int>(std::lround(v));
+    if (ui < 0 || vi < 0 || ui >= camera_.width || vi >= camera_.height) continue;
+    covered.at<std::uint8_t>(vi, ui) = 255;
+    const double z_gt = gt_depth_m.at<float>(vi, ui);
+    if (z_gt <= 0.0) continue;
+    const double error = std::abs(p.z() - z_gt);
+    errors_.push_back(error);
+    relative_.push_back(error / z_gt);
+    if (!gt_edges.empty() && gt_edges.at<std::uint8_t>(vi, ui) == 255) {
+      ++horizontal_points_;
+      relative_horizontal_sum_ += error / z_gt;
+    }
+  }
+  if (gt_edges.empty()) return;
+  cv::dilate(covered, covered, cv::getStructuringElement(cv::MORPH_RECT, cv::Size(3, 3)));
+  for (int y = 0; y < camera_.height; ++y) {
+    for (int x = 0; x < camera_.width; ++x) {
+      const std::uint8_t label = gt_edges.at<std::uint8_t>(y, x);
+      if (label == 0) continue;
+      const bool hit = covered.at<std::uint8_t>(y, x) != 0;
+      ++edges_;
+      edges_covered_ += hit ? 1 : 0;
+      if (label == 255) {
+        ++horizontal_edges_;
+        horizontal_covered_ += hit ? 1 : 0;
+      }
+    }
+  }
+}
+
+DepthErrorSummary DepthErrorAccumulator::Summary() const {
+  DepthErrorSummary s;
+  s.frames = frames_;
+  s.points = errors_.size();
+  if (!errors_.empty()) {
+    s.mean_m = std::accumulate(errors_.begin(), errors_.end(), 0.0) / errors_.size();
+    std::vector<double> sorted = errors_;
+    std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+    s.median_m = sorted[sorted.size() / 2];
+    s.relative = std::accumulate(relative_.begin(), relative_.end(), 0.0) / relative_.size();
+  }
+  auto share = [](std::size_t a, std::size_t b) {
+    return b == 0 ? 0.0 : static_cast<double>(a) / b;
+  };
+  s.completeness = share(edges_covered_, edges_);
+  s.completeness_horizontal = share(horizontal_covered_, horizontal_edges_);
+  s.completeness_other = share(edges_covered_ - horizontal_covered_, edges_ - horizontal_edges_);
+  s.points_horizontal = horizontal_points_;
+  s.relative_horizontal =
+      horizontal_points_ == 0 ? 0.0 : relative_horizontal_sum_ / horizontal_points_;
+  return s;
+}
+
+}  // namespace aavio::eval

@@ -1,0 +1,54 @@
+#pragma once
+/// Depth accuracy of a map against ground truth (design.md §6): for every estimated point with
+/// ground truth, |z_est − z_gt| (mean, median) and |Δz| / z_gt (mean relative); completeness =
+/// share of ground-truth edge pixels with an estimate within one pixel, overall and split into
+/// near-horizontal edges and the others.
+
+#include <Eigen/Core>
+#include <opencv2/core/mat.hpp>
+#include <vector>
+
+#include "aavio/geometry/rigid_transform.hpp"
+
+namespace aavio::eval {
+
+/// A rectified pinhole camera: the one ground-truth depth maps are drawn in.
+struct PinholeCamera {
+  int width = 0, height = 0;
+  double f = 0.0, cx = 0.0, cy = 0.0;
+};
+
+struct DepthErrorSummary {
+  std::size_t points = 0;  ///< estimates with ground truth
+  std::size_t frames = 0;
+  double mean_m = 0.0, median_m = 0.0;
+  double relative = 0.0;      ///< mean of |Δz| / z_gt
+  double completeness = 0.0;  ///< share of edge pixels with an estimate (±1 px)
+  double completeness_horizontal = 0.0;
+  double completeness_other = 0.0;
+  std::size_t points_horizontal = 0;  ///< estimates on near-horizontal GT edges
+  double relative_horizontal = 0.0;
+};
+
+class DepthErrorAccumulator {
+ public:
+  explicit DepthErrorAccumulator(const PinholeCamera& camera) : camera_(camera) {}
+
+  /// One map (points in the world) against one ground-truth frame (depth CV_32F and edge labels
+  /// CV_8U, may be empty) seen from T_world_cam.
+  void Add(const std::vector<Eigen::Vector3d>& points_world, const cv::Mat& gt_depth_m,
+           const cv::Mat& gt_edges, const geometry::RigidTransform& T_world_cam);
+
+  DepthErrorSummary Summary() const;
+
+ private:
+  PinholeCamera camera_;
+  std::vector<double> errors_, relative_;
+  double relative_horizontal_sum_ = 0.0;
+  std::size_t horizontal_points_ = 0;
+  std::size_t edges_ = 0, edges_covered_ = 0;
+  std::size_t horizontal_edges_ = 0, horizontal_covered_ = 0;
+  std::size_t frames_ = 0;
+};
+
+}  // namespace aavio::eval

@@ -1,0 +1,39 @@
+#include "aavio/eval/depth_error.hpp"
+
+#include <gtest/gtest.h>
+
+#include <opencv2/core.hpp>
+
+namespace aavio::eval {
+namespace {
+
+TEST(DepthError, ErrorsAndCompletenessOnAPlane) {
+  const PinholeCamera camera{40, 30, 50.0, 20.0, 15.0};
+  cv::Mat depth(30, 40, CV_32FC1, cv::Scalar(10.0f));
+  cv::Mat edges(30, 40, CV_8UC1, cv::Scalar(0));
+  edges.row(10).setTo(255);  // a near-horizontal edge
+  edges.col(30).setTo(128);  // an other edge: 30 pixels, one of them taken from the row (39 left)
+  geometry::RigidTransform T_world_cam;
+  T_world_cam.t = {0.0, 0.0, -2.0};  // camera 2 m behind the world origin
+  // Estimates on the row, 1 % too far, at every 3rd pixel (±1 px covers the whole row).
+  std::vector<Eigen::Vector3d> points;
+  for (int x = 1; x < 40; x += 3) {
+    const double z = 10.1;
+    points.emplace_back((x - 20.0) / 50.0 * z, (10 - 15.0) / 50.0 * z, z - 2.0);  // world
+  }
+  DepthErrorAccumulator acc(camera);
+  acc.Add(points, depth, edges, T_world_cam);
+  const DepthErrorSummary s = acc.Summary();
+  EXPECT_EQ(s.points, points.size());
+  EXPECT_NEAR(s.mean_m, 0.1, 1e-9);
+  EXPECT_NEAR(s.median_m, 0.1, 1e-9);
+  EXPECT_NEAR(s.relative, 0.01, 1e-9);
+  // Points at x = 1, 4, …, 37 cover x = 0…38 (±1 px): 38 of the row's 39 pixels.
+  EXPECT_NEAR(s.completeness_horizontal, 38.0 / 39.0, 1e-12);
+  // The column: rows 9–11 are within 1 px of the row's points: 3 of its 30 pixels.
+  EXPECT_NEAR(s.completeness_other, 3.0 / 30.0, 1e-12);
+  EXPECT_EQ(s.points_horizontal, points.size());
+}
+
+}  // namespace
+}  // namespace aavio::eval

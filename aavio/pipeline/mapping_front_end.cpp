@@ -1,0 +1,76 @@
+#include "aavio/pipeline/mapping_front_end.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace aavio::pipeline {
+namespace {
+
+events::RepresentationConfig RepresentationConfigOf(const OdometryConfig& c) {
+  return {c.time_surface, c.adaptive_accumulation, c.edge_sampling,
+          static_cast<std::uint64_t>(c.pipeline.random_seed)};
+}
+
+}  // namespace
+
+MappingFrontEnd::MappingFrontEnd(const geometry::StereoRig& rig, const OdometryConfig& config,
+                                 const geometry::PoseBuffer& poses, TimeNs start_ns)
+    : config_(config),
+      poses_(poses),
+      rectification_(geometry::BuildStereoRectification(rig)),
+      stereo_(mapping::RectifiedStereo::FromRig(rig)),
+      builder_(rectification_, rig.width(), rig.height(), RepresentationConfigOf(config), start_ns),
+      mapper_(stereo_, rectification_.left.valid_mask, config.mapping),
+      tick_ns_(SecondsToNs(1.0 / config.time_surface.rate_hz)),
+      next_tick_ns_(start_ns + tick_ns_),
+      ticks_per_cycle_(std::max(
+          1, static_cast<int>(std::lround(config.time_surface.rate_hz / config.mapping.rate_hz)))) {
+}
+
+Status MappingFrontEnd::Process(std::span<const events::Event> left,
+                                std::span<const events::Event> right, TimeNs t_end_ns) {
+  AAVIO_RETURN_IF_ERROR(builder_.AddEvents(events::Camera::kLeft, left));
+  AAVIO_RETURN_IF_ERROR(builder_.AddEvents(events::Camera::kRight, right));
+  while (next_tick_ns_ < t_end_ns) {
+    AAVIO_RETURN_IF_ERROR(Tick(next_tick_ns_));
+    next_tick_ns_ += tick_ns_;
+  }
+  return Status::Ok();
+}
+
+Status MappingFrontEnd::Tick(TimeNs t_ns) {
+  auto obs = std::make_shared<events::Observation>();
+  AAVIO_RETURN_IF_ERROR(builder_.Build(t_ns, obs.get()));
+  ++ticks_;
+  if (on_tick) on_tick(obs->timings);
+  Expected<geometry::RigidTransform> pose = poses_.Query(t_ns);
+  if (!pose) return Status::Ok();  // no ground truth here: nothing to map with
+  const mapping::PosedObservation now{obs, *pose};
+
+  if (ticks_ % ticks_per_cycle_ == 0) {
+    MappingCycle cycle;
+    cycle.t_ns = t_ns;
+    cycle.representation = obs->timings;
+    if (!mapper_.initialized()) {
+      const Status init = mapper_.Initialize(now);
+      cycle.bootstrap = init.ok();
+    } else {
+      const mapping::PosedObservation* partner = mapping::FindTemporalPartner(
+          history_, *pose, config_.mapping.temporal_stereo.min_translation_m);
+      AAVIO_RETURN_IF_ERROR(mapper_.Update(now, partner, &cycle.report));
+    }
+    cycle.map = mapper_.local_map();
+    if (cycle.map && on_cycle) on_cycle(cycle);
+  }
+
+  // Keep this tick's AA map and pose for later temporal partners.
+  auto light = std::make_shared<events::Observation>();
+  light->t_ns = obs->t_ns;
+  light->aa_map = obs->aa_map;
+  history_.push_back({std::move(light), *pose});
+  if (static_cast<int>(history_.size()) > config_.mapping.temporal_stereo.history_length)
+    history_.erase(history_.begin());
+  return Status::Ok();
+}
+
+}  // namespace aavio::pipeline

@@ -1,0 +1,30 @@
+#pragma once
+/// Per-stage wall times of a run, summarised as summary.json reports them (design.md §4):
+/// median and 95th percentile in ms, number of calls, median number of items per call.
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace aavio::pipeline {
+
+struct StageSummary {
+  double median_ms = 0.0, p95_ms = 0.0;
+  std::size_t calls = 0;
+  double median_items = 0.0;
+};
+
+class StageTimings {
+ public:
+  void Add(const std::string& stage, double ms, double items = 0.0);
+  /// Stages in name order.
+  std::map<std::string, StageSummary> Summary() const;
+
+ private:
+  struct Samples {
+    std::vector<double> ms, items;
+  };
+  std::map<std::string, Samples> stages_;
+};
+
+}  // namespace aavio::pipeline

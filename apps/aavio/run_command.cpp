@@ -1,0 +1,243 @@
+// `aavio run`: today the mapping-only mode (`--gt-poses`): the sequence's ground-truth poses
+// drive mapping, and the maps are scored against its ground-truth depth (design.md §6). The full
+// odometry (tracking) lands with issues #7 and #8.
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <ostream>
+
+#include "aavio/common/format.hpp"
+#include "aavio/eval/depth_error.hpp"
+#include "aavio/io/calibration.hpp"
+#include "aavio/io/config_yaml.hpp"
+#include "aavio/io/ground_truth_depth.hpp"
+#include "aavio/io/sequence.hpp"
+#include "aavio/io/trajectory_io.hpp"
+#include "aavio/pipeline/mapping_front_end.hpp"
+#include "aavio/pipeline/stage_timings.hpp"
+#include "cli.hpp"
+#include "config_resolution.hpp"
+
+namespace aavio::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct RunOptions {
+  std::string sequence, calibration, out_dir;
+  bool gt_poses = false;
+  bool quiet = false;
+  double start_s = 0.0, duration_s = 0.0;
+  ConfigSources config;
+};
+
+Expected<geometry::PoseBuffer> GroundTruthPoses(const io::SequenceDescription& d) {
+  if (!d.gt_trajectory) {
+    return InvalidArgument(d.origin +
+                           ": --gt-poses needs ground truth, and the sequence names no "
+                           "ground_truth.trajectory");
+  }
+  if (d.gt_trajectory->format != io::SourceFormat::kText) {
+    return InvalidArgument(d.gt_trajectory->path +
+                           ": --gt-poses reads TUM text trajectories (convert a bag's poses with "
+                           "`aavio convert --to txt`)");
+  }
+  Expected<std::vector<geometry::StampedPose>> poses = io::ReadTumTrajectory(d.gt_trajectory->path);
+  if (!poses) return poses.status();
+  geometry::PoseBuffer buffer(0);
+  for (const geometry::StampedPose& p : *poses)
+    AAVIO_RETURN_IF_ERROR(buffer.Insert(p.t_ns, p.T_world_body));
+  return buffer;
+}
+
+nlohmann::json DepthJson(const eval::DepthErrorSummary& s) {
+  return {{"mean_m", s.mean_m},
+          {"median_m", s.median_m},
+          {"relative", s.relative},
+          {"completeness", s.completeness},
+          {"completeness_near_horizontal", s.completeness_horizontal},
+          {"completeness_other", s.completeness_other},
+          {"points", s.points},
+          {"points_near_horizontal", s.points_horizontal},
+          {"relative_near_horizontal", s.relative_horizontal},
+          {"frames", s.frames}};
+}
+
+Status Run(const RunOptions& options, Context& ctx) {
+  const auto wall_start = std::chrono::steady_clock::now();
+  Expected<pipeline::OdometryConfig> config = ResolveOdometryConfig(options.config);
+  if (!config) return config.status();
+  Expected<io::SequenceDescription> d = io::DescribeSequence(options.sequence, options.calibration);
+  if (!d) return d.status();
+  if (d->calibration.empty()) {
+    return InvalidArgument(options.sequence + ": the sequence names no calibration; give --calib");
+  }
+  Expected<io::LoadedCalibration> calibration = io::LoadCalibration(d->calibration);
+  if (!calibration) return calibration.status();
+  const geometry::StereoRig& rig = calibration->rig;
+  Expected<geometry::PoseBuffer> poses = GroundTruthPoses(*d);
+  if (!poses) return poses.status();
+
+  io::SequenceReaderOptions reader_options;
+  reader_options.stream.width = rig.width();
+  reader_options.stream.height = rig.height();
+  Expected<std::unique_ptr<io::SequenceReader>> reader =
+      io::SequenceReader::Open(*d, reader_options);
+  if (!reader) return reader.status();
+  const TimeNs begin = (*reader)->start_ns() + SecondsToNs(options.start_s);
+  const TimeNs end =
+      options.duration_s > 0.0 ? begin + SecondsToNs(options.duration_s) : (*reader)->end_ns();
+  if (options.start_s > 0.0) AAVIO_RETURN_IF_ERROR((*reader)->Seek(begin));
+
+  std::vector<io::GtDepthEntry> gt_depth;
+  if (!d->gt_depth.empty()) {
+    Expected<std::vector<io::GtDepthEntry>> index = io::ReadGtDepthIndex(d->gt_depth);
+    if (!index) return index.status();
+    gt_depth = std::move(*index);
+  }
+  const mapping::RectifiedStereo stereo = mapping::RectifiedStereo::FromRig(rig);
+  eval::DepthErrorAccumulator depth_all(
+      {stereo.width, stereo.height, stereo.f, stereo.cx_left, stereo.cy});
+  pipeline::StageTimings timings;
+  Status cycle_status = Status::Ok();
+  std::int64_t cycles = 0, bootstraps = 0;
+  std::size_t map_points_sum = 0;
+
+  pipeline::MappingFrontEnd front_end(rig, *config, *poses, begin);
+  front_end.on_tick = [&](const events::RepresentationTimings& t) {
+    timings.Add("time_surface", t.time_surface_ms);
+    timings.Add("aa_map", t.aa_ms);
+    timings.Add("sampling", t.sampling_ms);
+  };
+  front_end.on_cycle = [&](const pipeline::MappingCycle& cycle) {
+    ++cycles;
+    bootstraps += cycle.bootstrap ? 1 : 0;
+    map_points_sum += cycle.map->points.size();
+    if (!cycle.bootstrap) {
+      const mapping::MappingCycleReport& r = cycle.report;
+      timings.Add("matching", r.matching_ms, r.static_candidates + r.temporal_candidates);
+      timings.Add("depth_refinement", r.refinement_ms, r.static_matches + r.temporal_matches);
+      timings.Add("fusion", r.fusion_ms, r.map_points);
+      timings.Add("mapping_total", r.total_ms, r.samples);
+    }
+    if (gt_depth.empty() || !cycle_status.ok()) return;
+    // The ground-truth depth frame nearest in time (within 25 ms), seen from its own pose.
+    auto it = std::lower_bound(gt_depth.begin(), gt_depth.end(), cycle.t_ns,
+                               [](const io::GtDepthEntry& e, TimeNs t) { return e.t_ns < t; });
+    const io::GtDepthEntry* best = nullptr;
+    for (auto c : {it, it == gt_depth.begin() ? it : it - 1}) {
+      if (c == gt_depth.end()) continue;
+      if (!best || std::llabs(c->t_ns - cycle.t_ns) < std::llabs(best->t_ns - cycle.t_ns))
+        best = &*c;
+    }
+    if (!best || std::llabs(best->t_ns - cycle.t_ns) > 25 * kNsPerMs) return;
+    Expected<geometry::RigidTransform> pose = poses->Query(best->t_ns);
+    if (!pose) return;
+    Expected<io::GtDepthFrame> frame =
+        io::LoadGtDepthFrame(d->gt_depth, *best, stereo.fb(), stereo.cx_left - stereo.cx_right);
+    if (!frame) {
+      cycle_status = frame.status();
+      return;
+    }
+    depth_all.Add(cycle.map->points_world, frame->depth_m, frame->edges, *pose);
+  };
+
+  const bool progress = !options.quiet && isatty(STDERR_FILENO);
+  std::int64_t events = 0;
+  io::SensorPacket packet;
+  while (true) {
+    Expected<bool> more = (*reader)->Next(&packet);
+    if (!more) return more.status();
+    if (!*more || packet.t_begin_ns >= end) break;
+    events += static_cast<std::int64_t>(packet.left.size() + packet.right.size());
+    AAVIO_RETURN_IF_ERROR(front_end.Process(packet.left, packet.right, packet.t_end_ns));
+    AAVIO_RETURN_IF_ERROR(cycle_status);
+    if (progress && front_end.ticks() % 100 == 0) {
+      ctx.err << StrFormat("\rmapping %.1f s", NsToSeconds(packet.t_end_ns - begin)) << std::flush;
+    }
+  }
+  if (progress) ctx.err << "\r";
+  const double wall_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  const double data_s = NsToSeconds(std::min(end, (*reader)->end_ns()) - begin);
+
+  std::error_code ec;
+  fs::create_directories(options.out_dir, ec);
+  if (ec) return IoError(options.out_dir + ": cannot create the folder (" + ec.message() + ")");
+  AAVIO_RETURN_IF_ERROR(
+      io::WriteTextFile((fs::path(options.out_dir) / "config.yaml").string(),
+                        io::FormatConfigYaml(FlattenConfig(*config),
+                                             "aavio effective configuration (" + VersionString() +
+                                                 ")\nfrom: " + DescribeSources(options.config))));
+  nlohmann::json summary;
+  summary["mode"] = "mapping_only_gt_poses";
+  summary["data_duration_s"] = data_s;
+  summary["wall_s"] = wall_s;
+  summary["real_time_factor"] = wall_s > 0.0 ? data_s / wall_s : 0.0;
+  summary["events"] = events;
+  summary["mapping_cycles"] = cycles;
+  summary["bootstraps"] = bootstraps;
+  summary["mean_map_points"] = cycles > 0 ? static_cast<double>(map_points_sum) / cycles : 0.0;
+  for (const auto& [stage, s] : timings.Summary()) {
+    summary["stages"][stage] = {{"median_ms", s.median_ms},
+                                {"p95_ms", s.p95_ms},
+                                {"calls", s.calls},
+                                {"median_items", s.median_items}};
+  }
+  const eval::DepthErrorSummary depth = depth_all.Summary();
+  if (!gt_depth.empty()) summary["depth"] = DepthJson(depth);
+  AAVIO_RETURN_IF_ERROR(io::WriteTextFile((fs::path(options.out_dir) / "summary.json").string(),
+                                          summary.dump(2) + "\n"));
+  ctx.out << StrFormat(
+      "mapped %.2f s of data in %.1f s (real-time factor %.2f): %lld cycles, %.0f "
+      "map points on average\n",
+      data_s, wall_s, wall_s > 0.0 ? data_s / wall_s : 0.0, static_cast<long long>(cycles),
+      cycles > 0 ? static_cast<double>(map_points_sum) / cycles : 0.0);
+  if (!gt_depth.empty()) {
+    ctx.out << StrFormat(
+        "depth vs ground truth (%zu points over %zu maps): mean %.3f m, median %.3f m, relative "
+        "%.2f %%; completeness %.1f %% (near-horizontal edges %.1f %%, others %.1f %%)\n",
+        depth.points, depth.frames, depth.mean_m, depth.median_m, 100.0 * depth.relative,
+        100.0 * depth.completeness, 100.0 * depth.completeness_horizontal,
+        100.0 * depth.completeness_other);
+  }
+  ctx.out << "wrote " << options.out_dir << "/{config.yaml,summary.json}\n";
+  return Status::Ok();
+}
+
+}  // namespace
+
+void RegisterRun(CLI::App& app, Context& ctx) {
+  auto options = std::make_shared<RunOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "run", "Run on a sequence (today: mapping with ground-truth poses, --gt-poses)");
+  sub->add_option("sequence", options->sequence, "sequence.yaml, DSEC folder or bag")->required();
+  sub->add_option("--out", options->out_dir, "Output folder")->required();
+  sub->add_option("--calib", options->calibration, "Calibration, if the sequence names none");
+  sub->add_flag("--gt-poses", options->gt_poses,
+                "Mapping only, with the sequence's ground-truth poses instead of tracking");
+  sub->add_option("--start", options->start_s, "Seconds to skip")->check(CLI::NonNegativeNumber);
+  sub->add_option("--duration", options->duration_s, "Seconds to process (default: all)")
+      ->check(CLI::NonNegativeNumber);
+  sub->add_flag("--quiet", options->quiet, "No progress output");
+  AddConfigOptions(*sub, &options->config);
+  sub->callback([&ctx, options] {
+    ctx.action = [&ctx, options] {
+      if (!options->gt_poses) {
+        ctx.err << "aavio run: the full odometry (tracking) is not built yet (issues #7, #8); "
+                   "`aavio run SEQUENCE --gt-poses --out DIR` runs mapping with ground-truth "
+                   "poses\n";
+        return static_cast<int>(kExitNotImplemented);
+      }
+      const Status status = Run(*options, ctx);
+      if (status.ok()) return static_cast<int>(kExitOk);
+      ctx.err << "aavio run: error: " << status.message() << "\n";
+      return static_cast<int>(kExitError);
+    };
+  });
+}
+
+}  // namespace aavio::cli
