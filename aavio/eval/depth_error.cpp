@@ -58,6 +58,12 @@ DepthErrorSummary DepthErrorAccumulator::Summary() const {
     std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
     s.median_m = sorted[sorted.size() / 2];
     s.relative = std::accumulate(relative_.begin(), relative_.end(), 0.0) / relative_.size();
+    std::vector<double> rel = relative_;
+    std::nth_element(rel.begin(), rel.begin() + rel.size() / 2, rel.end());
+    s.relative_median = rel[rel.size() / 2];
+    s.outliers = static_cast<double>(std::count_if(relative_.begin(), relative_.end(),
+                                                   [](double r) { return r > 0.1; })) /
+                 relative_.size();
   }
   auto share = [](std::size_t a, std::size_t b) {
     return b == 0 ? 0.0 : static_cast<double>(a) / b;

@@ -22,8 +22,10 @@ struct DepthErrorSummary {
   std::size_t points = 0;  ///< estimates with ground truth
   std::size_t frames = 0;
   double mean_m = 0.0, median_m = 0.0;
-  double relative = 0.0;      ///< mean of |Δz| / z_gt
-  double completeness = 0.0;  ///< share of edge pixels with an estimate (±1 px)
+  double relative = 0.0;         ///< mean of |Δz| / z_gt
+  double relative_median = 0.0;  ///< median of |Δz| / z_gt
+  double outliers = 0.0;         ///< share of points with |Δz| / z_gt > 10 %
+  double completeness = 0.0;     ///< share of edge pixels with an estimate (±1 px)
   double completeness_horizontal = 0.0;
   double completeness_other = 0.0;
   std::size_t points_horizontal = 0;  ///< estimates on near-horizontal GT edges

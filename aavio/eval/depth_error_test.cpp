@@ -28,6 +28,8 @@ TEST(DepthError, ErrorsAndCompletenessOnAPlane) {
   EXPECT_NEAR(s.mean_m, 0.1, 1e-9);
   EXPECT_NEAR(s.median_m, 0.1, 1e-9);
   EXPECT_NEAR(s.relative, 0.01, 1e-9);
+  EXPECT_NEAR(s.relative_median, 0.01, 1e-9);
+  EXPECT_DOUBLE_EQ(s.outliers, 0.0);
   // Points at x = 1, 4, …, 37 cover x = 0…38 (±1 px): 38 of the row's 39 pixels.
   EXPECT_NEAR(s.completeness_horizontal, 38.0 / 39.0, 1e-12);
   // The column: rows 9–11 are within 1 px of the row's points: 3 of its 30 pixels.

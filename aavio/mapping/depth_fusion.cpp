@@ -38,8 +38,14 @@ void DepthFusion::Add(StereoKind kind, DepthBatch batch) {
 }
 
 bool DepthFusion::full() const {
-  // The reference uses the frame count for both strategies.
-  return static_cast<int>(static_.size()) >= config_.fusion.max_frames;
+  // const_frames: max_frames batches; const_points: the point budget is reached. (The reference
+  // tests the frame count for both, so with const_points and small batches it never cleans.)
+  if (config_.fusion.strategy == FusionStrategy::kConstFrames)
+    return static_cast<int>(static_.size()) >= config_.fusion.max_frames;
+  std::size_t points = 0;
+  for (const DepthBatch& b : static_)
+    points += b.points.size();
+  return static_cast<double>(points) >= config_.fusion.max_points;
 }
 
 void DepthFusion::Clear() {
@@ -59,15 +65,22 @@ DepthMap DepthFusion::Fuse(const geometry::RigidTransform& T_world_frame, TimeNs
       }
     }
   };
-  fuse_fifo(static_);
-  if (full()) {
+  auto clean = [&] {
+    if (!full()) return;
     map.Clean(config_.depth_refinement.max_inv_depth_stddev, config_.fusion.min_age,
               config_.inv_depth_min, config_.inv_depth_max);
+    if (config_.regularization.enabled) {
+      map.Regularize(config_.regularization, config_.fusion.compatibility_sigmas);
+    }
+  };
+  fuse_fifo(static_);
+  if (config_.fusion.clean_temporal) {
+    fuse_fifo(temporal_);  // temporal points must be confirmed like static ones
+    clean();
+  } else {
+    clean();  // [ESVO2]: temporal points join after cleaning and are never cleaned
+    fuse_fifo(temporal_);
   }
-  if (config_.regularization.enabled) {
-    map.Regularize(config_.regularization, config_.fusion.compatibility_sigmas);
-  }
-  fuse_fifo(temporal_);
   return map;
 }
 

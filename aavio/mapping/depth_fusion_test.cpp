@@ -91,13 +91,23 @@ TEST(DepthFusion, FifoPoliciesAndPropagation) {
   }
   EXPECT_EQ(fusion.batches(), 3u);
   EXPECT_TRUE(fusion.full());
-  // A temporal batch is kept in its own FIFO and fused after cleaning (not cleaned this cycle).
+  // A temporal batch is kept in its own FIFO. With clean_temporal (default) an unconfirmed
+  // temporal point is cleaned like a static one; ESVO2's order fuses it after cleaning.
   DepthPoint temporal = Point(100.0f, 30.0f, 0.05, 0.01);
   temporal.kind = StereoKind::kTemporal;
   fusion.Add(StereoKind::kTemporal, {5, {}, {temporal}});
   geometry::RigidTransform forward;
   forward.t = {0.0, 0.0, -1.0};  // the new frame is 1 m behind: points at 10 m are now at 11 m
-  const DepthMap map = fusion.Fuse(forward, 6);
+  for (const DepthPoint& p : fusion.Fuse(forward, 6).Points())
+    EXPECT_NE(p.kind, StereoKind::kTemporal);
+  config.fusion.clean_temporal = false;
+  DepthFusion esvo2_order(stereo, config);
+  for (int k = 0; k < 5; ++k) {
+    DepthBatch batch{k, {}, {Point(50.0f + k, 60.0f, 0.1, 0.01)}};
+    esvo2_order.Add(StereoKind::kStatic, batch);
+  }
+  esvo2_order.Add(StereoKind::kTemporal, {5, {}, {temporal}});
+  const DepthMap map = esvo2_order.Fuse(forward, 6);
   ASSERT_GT(map.size(), 0u);
   bool temporal_seen = false;
   for (const DepthPoint& p : map.Points()) {

@@ -89,15 +89,13 @@ struct Evaluation {
   double cost = 0.0;  // Σ w r²
 };
 
-void Evaluate(const Residual& f, double rho, double nu, double s2_start, Evaluation* e) {
-  float r[kMaxPatch];
-  f(rho, r);
+// Residuals at ρ with Student-t weights of the scale s2 (fixed within an LM iteration).
+void Evaluate(const Residual& f, double rho, double nu, double s2, Evaluation* e, float* raw) {
+  f(rho, raw);
   const int n = f.size();
-  const double s2 =
-      StudentTScale2(std::span<const float>(r, static_cast<std::size_t>(n)), nu, s2_start);
   e->cost = 0.0;
   for (int k = 0; k < n; ++k) {
-    const double rk = r[k];
+    const double rk = raw[k];
     const double w = (nu + 1.0) / (nu + rk * rk / s2);
     e->weights[k] = static_cast<float>(w);
     e->weighted[k] = static_cast<float>(std::sqrt(w) * rk);
@@ -128,9 +126,17 @@ bool RefineOne(const RefinementInput& in, const Match& m, const RectifiedStereo&
   const Residual f(in, m, stereo, c.patch_width, c.patch_height);
   if (!f.ok()) return false;
   const double nu = c.student_t_nu, s2_t = c.student_t_scale * c.student_t_scale;
+  float raw[kMaxPatch];
+  const std::size_t n = static_cast<std::size_t>(f.size());
   double rho = m.rho;
+  // The robust scale from the residuals at ρ (IRLS), then weights with that scale.
+  auto scale_at = [&](double r) {
+    f(r, raw);
+    return StudentTScale2(std::span<const float>(raw, n), nu, s2_t);
+  };
+  double s2 = scale_at(rho);
   Evaluation e;
-  Evaluate(f, rho, nu, s2_t, &e);
+  Evaluate(f, rho, nu, s2, &e, raw);
   double jtj = 0.0, jtr = 0.0;
   if (c.max_iterations == 0) {
     // ESVO2: ρ from matching, σ from one 5 % forward difference, ‖J‖ floored at 0.1.
@@ -143,12 +149,12 @@ bool RefineOne(const RefinementInput& in, const Match& m, const RectifiedStereo&
       if (jtj <= 1e-12) break;
       bool improved = false;
       double step = 0.0;
-      for (int attempt = 0; attempt < 8 && !improved; ++attempt) {
+      for (int attempt = 0; attempt < 5 && !improved; ++attempt) {
         step = -jtr / (jtj * (1.0 + lambda));
         const double candidate = rho + step;
         if (candidate > 0.0) {
           Evaluation trial;
-          Evaluate(f, candidate, nu, s2_t, &trial);
+          Evaluate(f, candidate, nu, s2, &trial, raw);
           if (trial.cost < e.cost) {
             rho = candidate;
             e = trial;
@@ -160,6 +166,9 @@ bool RefineOne(const RefinementInput& in, const Match& m, const RectifiedStereo&
         lambda *= 10.0;
       }
       if (!improved || std::abs(step) < 1e-6 * rho) break;
+      // Re-estimate the scale where we are now (IRLS), keep the cost comparable.
+      s2 = scale_at(rho);
+      Evaluate(f, rho, nu, s2, &e, raw);
     }
     jtj = JacobianNorm2(f, rho, std::max(1e-7, 1e-3 * rho), e, &jtr);
   }
@@ -168,8 +177,14 @@ bool RefineOne(const RefinementInput& in, const Match& m, const RectifiedStereo&
   const double variance = sigma_t2 / jtj;
   // Culling (algorithm.md §4.7).
   const double area = static_cast<double>(c.patch_width) * c.patch_height;
-  if (std::sqrt(variance) > c.max_inv_depth_stddev) return false;
-  if (e.cost > c.residual_threshold * c.residual_threshold * area) return false;
+  const TemporalStereoConfig& t = config.temporal_stereo;
+  const bool temporal = m.kind == StereoKind::kTemporal;
+  const double max_stddev =
+      temporal && t.max_inv_depth_stddev > 0.0 ? t.max_inv_depth_stddev : c.max_inv_depth_stddev;
+  const double residual =
+      temporal && t.residual_threshold > 0.0 ? t.residual_threshold : c.residual_threshold;
+  if (std::sqrt(variance) > max_stddev) return false;
+  if (e.cost > residual * residual * area) return false;
   if (rho < config.inv_depth_min || rho > config.inv_depth_max) return false;
   out->u = m.u;
   out->v = m.v;

@@ -150,8 +150,9 @@ Status Mapper::Update(const PosedObservation& now, const PosedObservation* partn
   cv::Mat aa_now, aa_past;
   geometry::RigidTransform T_past_now;
   if (!temporal_group.empty()) {
-    aa_now = ToFloat(obs.aa_map, false);
-    aa_past = ToFloat(partner->obs->aa_map, false);
+    const bool smooth_aa = config_.temporal_stereo.smooth_aa;
+    aa_now = ToFloat(obs.aa_map, smooth_aa);
+    aa_past = ToFloat(partner->obs->aa_map, smooth_aa);
     T_past_now = partner->T_world_obs.Inverse() * now.T_world_obs;
     const std::vector<Match> temporal_matches =
         MatchTemporal({aa_now, aa_past, T_past_now}, temporal_group, stereo_, config_);

@@ -24,7 +24,8 @@ Status StaticStereoConfig::Validate() const {
       .InRange("step", step, 1, 32)
       .Require(zncc_threshold > 0.0 && zncc_threshold <= 1.0, "zncc_threshold",
                "= " + FieldChecker::Num(zncc_threshold) + " must be in (0, 1] (cost ½(1 − ZNCC))")
-      .InRange("empty_patch_fraction", empty_patch_fraction, 0.0, 1.0);
+      .InRange("empty_patch_fraction", empty_patch_fraction, 0.0, 1.0)
+      .InRange("uniqueness", uniqueness, 0.0, 1.0);
   return check.status();
 }
 
@@ -37,6 +38,8 @@ Status TemporalStereoConfig::Validate() const {
                "must be odd, from 3 to 127")
       .Positive("min_translation_m", min_translation_m)
       .Positive("threshold_factor", threshold_factor)
+      .NonNegative("min_parallax_px", min_parallax_px)
+      .NonNegative("max_relative_depth_error", max_relative_depth_error)
       .Positive("min_depth_m", min_depth_m)
       .Require(max_depth_m > min_depth_m, "max_depth_m",
                "= " + FieldChecker::Num(max_depth_m) + " must exceed min_depth_m (" +

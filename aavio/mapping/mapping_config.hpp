@@ -19,6 +19,9 @@ struct StaticStereoConfig {
   double zncc_threshold = 0.1;         ///< θ: accept cost ½(1 − ZNCC) below it ([ICRA], [ESVO])
   bool smooth_time_surface = true;     ///< Gaussian 5×5 on the TS before matching (DSEC configs)
   double empty_patch_fraction = 0.95;  ///< reject patches with more than this share of TS < 1
+  /// Reject a match when another local minimum's ZNCC is within this fraction of the best's
+  /// (e.g. 0.1: a rival with ≥ 90 % of the best correlation); 0 = off, as the reference codes.
+  double uniqueness = 0.0;
 
   template <typename V>
   void VisitFields(V&& v) {
@@ -30,6 +33,7 @@ struct StaticStereoConfig {
     v("zncc_threshold", zncc_threshold);
     v("smooth_time_surface", smooth_time_surface);
     v("empty_patch_fraction", empty_patch_fraction);
+    v("uniqueness", uniqueness);
   }
   Status Validate() const;
 };
@@ -41,7 +45,19 @@ struct TemporalStereoConfig {
   int patch_cols = 31;
   double min_translation_m = 0.3;  ///< partner at least this far away ([ICRA] 0.3 hard-coded)
   double threshold_factor = 3.0;   ///< accept cost < factor × static zncc_threshold ([ICRA] 3θ)
-  double min_depth_m = 0.8;        ///< triangulated depth gate ([ICRA] 0.8–40 m hard-coded)
+  /// Skip pixels whose epipolar segment over the depth range is shorter than this (aavio): with
+  /// forward motion pixels near the focus of expansion have almost no parallax.
+  double min_parallax_px = 0.0;
+  bool smooth_aa =
+      false;  ///< Gaussian 5×5 on the AA maps (aavio; sub-pixel matching, LM gradients)
+  /// Reject a match whose depth would move by more than this fraction for one pixel of matching
+  /// error (aavio; 0 = off): triangulation too ill-conditioned to be worth a map point.
+  double max_relative_depth_error = 0.0;
+  /// Culling of temporal estimates ([ESVO2] residual_vis_threshold_ln, stdVar_vis_threshold_ln):
+  /// the AA residual differs from the TS one; ≤ 0 uses depth_refinement's thresholds.
+  double residual_threshold = 0.0;
+  double max_inv_depth_stddev = 0.0;
+  double min_depth_m = 0.8;  ///< triangulated depth gate ([ICRA] 0.8–40 m hard-coded)
   double max_depth_m = 40.0;
   int history_length = 100;  ///< observations kept for the partner search (≈1 s at 100 Hz)
 
@@ -52,6 +68,11 @@ struct TemporalStereoConfig {
     v("patch_cols", patch_cols);
     v("min_translation_m", min_translation_m);
     v("threshold_factor", threshold_factor);
+    v("min_parallax_px", min_parallax_px);
+    v("smooth_aa", smooth_aa);
+    v("max_relative_depth_error", max_relative_depth_error);
+    v("residual_threshold", residual_threshold);
+    v("max_inv_depth_stddev", max_inv_depth_stddev);
     v("min_depth_m", min_depth_m);
     v("max_depth_m", max_depth_m);
     v("history_length", history_length);
@@ -95,6 +116,9 @@ struct FusionConfig {
   int radius = 1;                     ///< 0: 2×2 cells, ≥ 1: 3×3 cells
   int min_age = 1;                    ///< fusions a point needs to survive cleaning
   double compatibility_sigmas = 2.0;  ///< |Δρ| < k σ counts as the same surface
+  /// Fuse temporal batches before cleaning, so that their points need confirmation too (aavio;
+  /// the paper is silent; ESVO2 fuses them after cleaning and never cleans them).
+  bool clean_temporal = true;
 
   template <typename V>
   void VisitFields(V&& v) {
@@ -104,6 +128,7 @@ struct FusionConfig {
     v("radius", radius);
     v("min_age", min_age);
     v("compatibility_sigmas", compatibility_sigmas);
+    v("clean_temporal", clean_temporal);
   }
   Status Validate() const;
 };

@@ -53,10 +53,25 @@ bool MatchOne(const StaticStereoInput& in, const Eigen::Vector2f& x, const Recti
   const int step = std::max(1, c.step);
   double best = 1.0;
   int best_d = -1;
+  thread_local std::vector<double> costs;
   if (step == 1) {
+    costs.resize(static_cast<std::size_t>(d_hi - d_lo + 1));
     for (int d = d_lo; d <= d_hi; ++d) {
       const double e = cost(d);
+      costs[static_cast<std::size_t>(d - d_lo)] = e;
       if (e < best) best = e, best_d = d;
+    }
+    // Uniqueness: no other local minimum (beyond ±2 px) may come close to the best.
+    if (c.uniqueness > 0.0 && best_d >= 0) {
+      for (int d = d_lo; d <= d_hi; ++d) {
+        if (std::abs(d - best_d) <= 2) continue;
+        const std::size_t i = static_cast<std::size_t>(d - d_lo);
+        const bool local_min =
+            (d == d_lo || costs[i] <= costs[i - 1]) && (d == d_hi || costs[i] <= costs[i + 1]);
+        if (local_min && (1.0 - 2.0 * costs[i]) > (1.0 - c.uniqueness) * (1.0 - 2.0 * best)) {
+          return false;
+        }
+      }
     }
   } else {
     // Coarse pass; every coarse disparity within 1.035θ marks its ±(step − 1) neighbours.

@@ -5,6 +5,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "aavio/mapping/zncc.hpp"
 
@@ -66,21 +67,52 @@ bool MatchOne(const TemporalStereoInput& in, const Eigen::Vector2f& x,
     return false;
   }
   const double du = u_near - u_far, dv = v_near - v_far;
-  const int steps = static_cast<int>(std::ceil(std::max(std::abs(du), std::abs(dv))));
-  if (steps < 1) return false;  // no parallax: the views are too close for this pixel
-  double best = 1.0;
-  Eigen::Vector2d best_x(0.0, 0.0);
+  const double length = std::max(std::abs(du), std::abs(dv));
+  // Too little parallax over the whole depth range: depth would be mostly quantisation noise.
+  if (length < t.min_parallax_px) return false;
+  const int steps = static_cast<int>(std::ceil(length));
+  std::vector<double> costs(static_cast<std::size_t>(steps + 1), 1.0);
+  int best_k = -1;
   for (int k = 0; k <= steps; ++k) {
     const double s = static_cast<double>(k) / steps;
     const int uc = static_cast<int>(std::lround(u_far + s * du));
     const int vc = static_cast<int>(std::lround(v_far + s * dv));
     if (uc - hc < 0 || uc + hc >= w || vc - hr < 0 || vc + hr >= h) continue;
     const double e = ZnccCost(patch, in.aa_past.ptr<float>(vc - hr) + (uc - hc), stride);
-    if (e > 0.0 && e < best) best = e, best_x = {uc, vc};  // exact zeros are ignored (reference)
+    if (e <= 0.0) continue;  // exact zeros are ignored (reference)
+    costs[static_cast<std::size_t>(k)] = e;
+    if (best_k < 0 || e < costs[static_cast<std::size_t>(best_k)]) best_k = k;
   }
+  if (best_k < 0) return false;
+  const double best = costs[static_cast<std::size_t>(best_k)];
   if (best >= t.threshold_factor * config.static_stereo.zncc_threshold) return false;
+  // Sub-sample position along the segment: the vertex of the parabola through the best cost and
+  // its neighbours.
+  double k_star = best_k;
+  if (best_k > 0 && best_k < steps) {
+    const double a = costs[static_cast<std::size_t>(best_k - 1)],
+                 c = costs[static_cast<std::size_t>(best_k + 1)];
+    const double curvature = a - 2.0 * best + c;
+    if (curvature > 1e-9 && a < 1.0 && c < 1.0)
+      k_star += std::clamp(0.5 * (a - c) / curvature, -0.5, 0.5);
+  }
+  const double s_star = k_star / steps;
+  const Eigen::Vector2d best_x(u_far + s_star * du, v_far + s_star * dv);
   const double z = TriangulateDepth(stereo, {x.x(), x.y()}, best_x, in.T_past_now);
   if (z < t.min_depth_m || z > t.max_depth_m) return false;
+  // Conditioning: one pixel of matching error along the segment may not move the depth by more
+  // than max_relative_depth_error (parallax too small for this depth otherwise).
+  if (t.max_relative_depth_error > 0.0) {
+    const double one_px = 1.0 / length;
+    const Eigen::Vector2d dir(du, dv);
+    const double z_a =
+        TriangulateDepth(stereo, {x.x(), x.y()}, best_x - one_px * dir, in.T_past_now);
+    const double z_b =
+        TriangulateDepth(stereo, {x.x(), x.y()}, best_x + one_px * dir, in.T_past_now);
+    if (z_a <= 0.0 || z_b <= 0.0 || 0.5 * std::abs(z_b - z_a) / z > t.max_relative_depth_error) {
+      return false;
+    }
+  }
   const double rho = 1.0 / z;
   if (rho < config.inv_depth_min || rho > config.inv_depth_max) return false;
   *out = {x.x(), x.y(), rho, best, StereoKind::kTemporal, true};

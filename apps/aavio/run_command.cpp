@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <filesystem>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <ostream>
 
@@ -57,6 +58,8 @@ nlohmann::json DepthJson(const eval::DepthErrorSummary& s) {
   return {{"mean_m", s.mean_m},
           {"median_m", s.median_m},
           {"relative", s.relative},
+          {"relative_median", s.relative_median},
+          {"outliers_over_10pct", s.outliers},
           {"completeness", s.completeness},
           {"completeness_near_horizontal", s.completeness_horizontal},
           {"completeness_other", s.completeness_other},
@@ -105,6 +108,7 @@ Status Run(const RunOptions& options, Context& ctx) {
   Status cycle_status = Status::Ok();
   std::int64_t cycles = 0, bootstraps = 0;
   std::size_t map_points_sum = 0;
+  std::map<std::string, double> counts;  // summed over mapping cycles
 
   pipeline::MappingFrontEnd front_end(rig, *config, *poses, begin);
   front_end.on_tick = [&](const events::RepresentationTimings& t) {
@@ -122,6 +126,15 @@ Status Run(const RunOptions& options, Context& ctx) {
       timings.Add("depth_refinement", r.refinement_ms, r.static_matches + r.temporal_matches);
       timings.Add("fusion", r.fusion_ms, r.map_points);
       timings.Add("mapping_total", r.total_ms, r.samples);
+      for (const auto& [name, value] : {std::pair{"static_candidates", r.static_candidates},
+                                        std::pair{"temporal_candidates", r.temporal_candidates},
+                                        std::pair{"static_matches", r.static_matches},
+                                        std::pair{"temporal_matches", r.temporal_matches},
+                                        std::pair{"static_points", r.static_points},
+                                        std::pair{"temporal_points", r.temporal_points},
+                                        std::pair{"cycles_with_partner", r.has_partner ? 1 : 0}}) {
+        counts[name] += value;
+      }
     }
     if (gt_depth.empty() || !cycle_status.ok()) return;
     // The ground-truth depth frame nearest in time (within 25 ms), seen from its own pose.
@@ -181,6 +194,8 @@ Status Run(const RunOptions& options, Context& ctx) {
   summary["mapping_cycles"] = cycles;
   summary["bootstraps"] = bootstraps;
   summary["mean_map_points"] = cycles > 0 ? static_cast<double>(map_points_sum) / cycles : 0.0;
+  for (const auto& [name, total] : counts)
+    summary["mapping_per_cycle"][name] = cycles > 0 ? total / static_cast<double>(cycles) : 0.0;
   for (const auto& [stage, s] : timings.Summary()) {
     summary["stages"][stage] = {{"median_ms", s.median_ms},
                                 {"p95_ms", s.p95_ms},
@@ -199,10 +214,11 @@ Status Run(const RunOptions& options, Context& ctx) {
   if (!gt_depth.empty()) {
     ctx.out << StrFormat(
         "depth vs ground truth (%zu points over %zu maps): mean %.3f m, median %.3f m, relative "
-        "%.2f %%; completeness %.1f %% (near-horizontal edges %.1f %%, others %.1f %%)\n",
+        "%.2f %% (median %.2f %%, %.1f %% of points off by > 10 %%); completeness %.1f %% "
+        "(near-horizontal edges %.1f %%, others %.1f %%)\n",
         depth.points, depth.frames, depth.mean_m, depth.median_m, 100.0 * depth.relative,
-        100.0 * depth.completeness, 100.0 * depth.completeness_horizontal,
-        100.0 * depth.completeness_other);
+        100.0 * depth.relative_median, 100.0 * depth.outliers, 100.0 * depth.completeness,
+        100.0 * depth.completeness_horizontal, 100.0 * depth.completeness_other);
   }
   ctx.out << "wrote " << options.out_dir << "/{config.yaml,summary.json}\n";
   return Status::Ok();

@@ -1,0 +1,61 @@
+#include "aavio/mapping/mapper.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "aavio/mapping/mapping_test_utils.hpp"
+
+namespace aavio::mapping {
+namespace {
+
+// A fronto-parallel textured plane at disparity 16 px (z = f·b/16 = 20.1 m) seen by the stereo
+// pair: every cycle's map must hold that depth, from SGM first and then from matching + fusion.
+TEST(Mapper, MapsAPlaneFromSgmThenCycles) {
+  const RectifiedStereo stereo = testing::SmallStereo();
+  auto obs = std::make_shared<events::Observation>();
+  obs->t_ns = 0;
+  cv::Mat left = testing::WaveTexture(160, 120, 7), right = testing::WaveTexture(160, 120, 7, 16.0);
+  left.convertTo(obs->ts_left, CV_8U);
+  right.convertTo(obs->ts_right, CV_8U);
+  obs->aa_map = obs->ts_left.clone();
+  cv::Sobel(left, obs->grad_u, CV_32F, 1, 0, 3, 1.0 / 8.0);
+  cv::Sobel(left, obs->grad_v, CV_32F, 0, 1, 3, 1.0 / 8.0);
+  for (std::uint16_t v = 12; v < 108; v += 3) {
+    for (std::uint16_t u = 40; u < 150; u += 3)
+      obs->samples.push_back({u, v, static_cast<float>(u), static_cast<float>(v), 2});
+  }
+  MappingConfig config;
+  config.bootstrap.min_points = 100;
+  config.max_points = 5000;
+  const cv::Mat valid(120, 160, CV_8UC1, cv::Scalar(255));
+  Mapper mapper(stereo, valid, config);
+  ASSERT_TRUE(mapper.Initialize({obs, {}}).ok());
+  const double z = stereo.fb() / 16.0;
+  auto median_depth = [&] {
+    std::vector<double> depths;
+    for (const DepthPoint& p : mapper.local_map()->points)
+      depths.push_back(1.0 / p.rho);
+    std::nth_element(depths.begin(), depths.begin() + depths.size() / 2, depths.end());
+    return depths[depths.size() / 2];
+  };
+  EXPECT_NEAR(median_depth(), z, 0.05 * z);
+  for (int k = 1; k <= 6; ++k) {
+    MappingCycleReport report;
+    auto next = std::make_shared<events::Observation>(*obs);
+    next->t_ns = k * 50 * kNsPerMs;
+    ASSERT_TRUE(mapper.Update({next, {}}, nullptr, &report).ok());
+    EXPECT_GT(report.static_points, 500);
+    EXPECT_EQ(report.temporal_candidates, 0);  // no partner: near-horizontal pixels are skipped
+  }
+  EXPECT_NEAR(median_depth(), z, 0.01 * z);
+  const LocalMapPtr map = mapper.local_map();
+  ASSERT_EQ(map->points.size(), map->points_world.size());
+  EXPECT_NEAR(map->points_world.front().z(), 1.0 / map->points.front().rho, 1e-9);
+  mapper.Reset();
+  EXPECT_FALSE(mapper.initialized());
+  EXPECT_EQ(mapper.local_map(), nullptr);
+}
+
+}  // namespace
+}  // namespace aavio::mapping
