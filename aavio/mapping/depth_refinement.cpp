@@ -89,10 +89,8 @@ struct Evaluation {
   double cost = 0.0;  // Σ w r²
 };
 
-// Residuals at ρ with Student-t weights of the scale s2 (fixed within an LM iteration).
-void Evaluate(const Residual& f, double rho, double nu, double s2, Evaluation* e, float* raw) {
-  f(rho, raw);
-  const int n = f.size();
+// Student-t weights of residuals `raw` with the scale s2 (fixed within an LM iteration).
+void Weigh(const float* raw, int n, double nu, double s2, Evaluation* e) {
   e->cost = 0.0;
   for (int k = 0; k < n; ++k) {
     const double rk = raw[k];
@@ -101,6 +99,11 @@ void Evaluate(const Residual& f, double rho, double nu, double s2, Evaluation* e
     e->weighted[k] = static_cast<float>(std::sqrt(w) * rk);
     e->cost += w * rk * rk;
   }
+}
+
+void Evaluate(const Residual& f, double rho, double nu, double s2, Evaluation* e, float* raw) {
+  f(rho, raw);
+  Weigh(raw, f.size(), nu, s2, e);
 }
 
 // d(√w r)/dρ by a forward difference with the weights of ρ held fixed.
@@ -165,10 +168,10 @@ bool RefineOne(const RefinementInput& in, const Match& m, const RectifiedStereo&
         }
         lambda *= 10.0;
       }
-      if (!improved || std::abs(step) < 1e-6 * rho) break;
-      // Re-estimate the scale where we are now (IRLS), keep the cost comparable.
+      if (!improved || std::abs(step) < 1e-4 * rho) break;
+      // Re-estimate the scale where we are now (IRLS) and re-weigh (scale_at leaves r(ρ) in raw).
       s2 = scale_at(rho);
-      Evaluate(f, rho, nu, s2, &e, raw);
+      Weigh(raw, f.size(), nu, s2, &e);
     }
     jtj = JacobianNorm2(f, rho, std::max(1e-7, 1e-3 * rho), e, &jtr);
   }
