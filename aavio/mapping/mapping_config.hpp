@@ -89,6 +89,9 @@ struct DepthRefinementConfig {
   double student_t_scale = 17.277;    ///< s of the TS residual [TS levels]
   double residual_threshold = 30.0;   ///< cull if cost > threshold² × patch area [TS levels]
   double max_inv_depth_stddev = 1.0;  ///< cull if σ_ρ above it [1/m] (DSEC 1 = effectively off)
+  /// Cull if σ_ρ / ρ (≈ relative depth uncertainty) is above it (aavio; 0 = off): far points
+  /// with a pixel or two of disparity carry depth errors of tens of percent.
+  double max_relative_stddev = 0.0;
 
   template <typename V>
   void VisitFields(V&& v) {
@@ -99,6 +102,7 @@ struct DepthRefinementConfig {
     v("student_t_scale", student_t_scale);
     v("residual_threshold", residual_threshold);
     v("max_inv_depth_stddev", max_inv_depth_stddev);
+    v("max_relative_stddev", max_relative_stddev);
   }
   Status Validate() const;
 };
