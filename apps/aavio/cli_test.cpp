@@ -206,3 +206,42 @@ TEST(Cli, RepresentationsOfASimulatedTick) {
 
 }  // namespace
 }  // namespace aavio::cli
+
+namespace aavio::cli {
+namespace {
+
+TEST(Cli, RunMapsWithGroundTruthPosesAndScoresDepth) {
+  const auto dir = testing::ScratchDir();
+  const std::string seq = (dir / "seq").string(), out = (dir / "run").string();
+  Result r =
+      RunAavio({"simulate", "--preset", "mini", "--duration", "1.5", "--out", seq, "--quiet"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  r = RunAavio({"run", seq, "--gt-poses", "--out", out, "--preset", "rpg", "--quiet", "--set",
+                "mapping.bootstrap.min_points=100"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  EXPECT_NE(r.out.find("depth vs ground truth"), std::string::npos) << r.out;
+  std::ifstream in(std::filesystem::path(out) / "summary.json");
+  const nlohmann::json j = nlohmann::json::parse(in);
+  EXPECT_GT(j["mapping_cycles"].get<int>(), 20);
+  EXPECT_GT(j["depth"]["points"].get<int>(), 1000);
+  EXPECT_LT(j["depth"]["relative_median"].get<double>(), 0.1);  // a real map, not noise
+  for (const char* stage : {"time_surface", "aa_map", "sampling", "matching", "depth_refinement",
+                            "fusion", "mapping_total"}) {
+    EXPECT_TRUE(j["stages"].contains(stage)) << stage;
+  }
+  EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(out) / "config.yaml"));
+  // The full odometry is not built yet: it says so.
+  r = RunAavio({"run", seq, "--out", out});
+  EXPECT_EQ(r.code, kExitNotImplemented);
+  EXPECT_NE(r.err.find("not built yet"), std::string::npos);
+  // A sequence without ground truth: the error names what is missing.
+  testing::WriteFile(dir / "seq" / "no_gt.yaml",
+                     "calibration: calibration\nevents:\n  left: events/left/events.h5\n  right: "
+                     "events/right/events.h5\n");
+  r = RunAavio({"run", (dir / "seq" / "no_gt.yaml").string(), "--gt-poses", "--out", out});
+  EXPECT_EQ(r.code, kExitError);
+  EXPECT_NE(r.err.find("names no ground_truth.trajectory"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace aavio::cli

@@ -7,11 +7,10 @@
 #include "aavio/common/format.hpp"
 #include "aavio/events/representation_builder.hpp"
 #include "aavio/geometry/rectification.hpp"
-#include "aavio/io/calibration.hpp"
-#include "aavio/io/sequence.hpp"
 #include "cli.hpp"
 #include "config_resolution.hpp"
 #include "representation_images.hpp"
+#include "sequence_opening.hpp"
 
 namespace aavio::cli {
 namespace {
@@ -28,31 +27,18 @@ struct RepresentationsOptions {
 Status Run(const RepresentationsOptions& options, Context& ctx) {
   Expected<pipeline::OdometryConfig> config = ResolveOdometryConfig(options.config);
   if (!config) return config.status();
-  Expected<io::SequenceDescription> description =
-      io::DescribeSequence(options.sequence, options.calibration);
-  if (!description) return description.status();
-  if (description->calibration.empty()) {
-    return InvalidArgument(options.sequence +
-                           ": the sequence names no calibration; give one with --calib");
-  }
-  Expected<io::LoadedCalibration> calibration = io::LoadCalibration(description->calibration);
-  if (!calibration) return calibration.status();
-  const geometry::StereoRig& rig = calibration->rig;
-
-  io::SequenceReaderOptions reader_options;
-  reader_options.stream.width = rig.width();
-  reader_options.stream.height = rig.height();
-  Expected<std::unique_ptr<io::SequenceReader>> reader =
-      io::SequenceReader::Open(*description, reader_options);
-  if (!reader) return reader.status();
-  const TimeNs start = (*reader)->start_ns(), end = (*reader)->end_ns();
+  Expected<OpenedSequence> opened = OpenSequence(options.sequence, options.calibration);
+  if (!opened) return opened.status();
+  const geometry::StereoRig& rig = opened->calibration.rig;
+  io::SequenceReader* reader = opened->reader.get();
+  const TimeNs start = reader->start_ns(), end = reader->end_ns();
   const TimeNs at = start + SecondsToNs(options.at_s);
   if (options.at_s < 0.0 || at > end) {
     return InvalidArgument(StrFormat("--at %.3f is outside the sequence (0 to %.3f s)",
                                      options.at_s, NsToSeconds(end - start)));
   }
   const TimeNs from = std::max(start, at - SecondsToNs(options.history_s));
-  AAVIO_RETURN_IF_ERROR((*reader)->Seek(from));
+  AAVIO_RETURN_IF_ERROR(reader->Seek(from));
 
   events::RepresentationConfig rc{config->time_surface, config->adaptive_accumulation,
                                   config->edge_sampling,
@@ -63,7 +49,7 @@ Status Run(const RepresentationsOptions& options, Context& ctx) {
   io::SensorPacket packet;
   std::int64_t left_events = 0, right_events = 0;
   while (true) {
-    Expected<bool> more = (*reader)->Next(&packet);
+    Expected<bool> more = reader->Next(&packet);
     if (!more) return more.status();
     if (!*more || packet.t_begin_ns > at) break;
     AAVIO_RETURN_IF_ERROR(builder.AddEvents(events::Camera::kLeft, packet.left));

@@ -21,6 +21,7 @@
 #include "aavio/pipeline/stage_timings.hpp"
 #include "cli.hpp"
 #include "config_resolution.hpp"
+#include "sequence_opening.hpp"
 
 namespace aavio::cli {
 namespace {
@@ -73,27 +74,17 @@ Status Run(const RunOptions& options, Context& ctx) {
   const auto wall_start = std::chrono::steady_clock::now();
   Expected<pipeline::OdometryConfig> config = ResolveOdometryConfig(options.config);
   if (!config) return config.status();
-  Expected<io::SequenceDescription> d = io::DescribeSequence(options.sequence, options.calibration);
-  if (!d) return d.status();
-  if (d->calibration.empty()) {
-    return InvalidArgument(options.sequence + ": the sequence names no calibration; give --calib");
-  }
-  Expected<io::LoadedCalibration> calibration = io::LoadCalibration(d->calibration);
-  if (!calibration) return calibration.status();
-  const geometry::StereoRig& rig = calibration->rig;
+  Expected<OpenedSequence> opened = OpenSequence(options.sequence, options.calibration);
+  if (!opened) return opened.status();
+  const io::SequenceDescription* d = &opened->description;
+  const geometry::StereoRig& rig = opened->calibration.rig;
+  io::SequenceReader* reader = opened->reader.get();
   Expected<geometry::PoseBuffer> poses = GroundTruthPoses(*d);
   if (!poses) return poses.status();
-
-  io::SequenceReaderOptions reader_options;
-  reader_options.stream.width = rig.width();
-  reader_options.stream.height = rig.height();
-  Expected<std::unique_ptr<io::SequenceReader>> reader =
-      io::SequenceReader::Open(*d, reader_options);
-  if (!reader) return reader.status();
-  const TimeNs begin = (*reader)->start_ns() + SecondsToNs(options.start_s);
+  const TimeNs begin = reader->start_ns() + SecondsToNs(options.start_s);
   const TimeNs end =
-      options.duration_s > 0.0 ? begin + SecondsToNs(options.duration_s) : (*reader)->end_ns();
-  if (options.start_s > 0.0) AAVIO_RETURN_IF_ERROR((*reader)->Seek(begin));
+      options.duration_s > 0.0 ? begin + SecondsToNs(options.duration_s) : reader->end_ns();
+  if (options.start_s > 0.0) AAVIO_RETURN_IF_ERROR(reader->Seek(begin));
 
   std::vector<io::GtDepthEntry> gt_depth;
   if (!d->gt_depth.empty()) {
@@ -162,7 +153,7 @@ Status Run(const RunOptions& options, Context& ctx) {
   std::int64_t events = 0;
   io::SensorPacket packet;
   while (true) {
-    Expected<bool> more = (*reader)->Next(&packet);
+    Expected<bool> more = reader->Next(&packet);
     if (!more) return more.status();
     if (!*more || packet.t_begin_ns >= end) break;
     events += static_cast<std::int64_t>(packet.left.size() + packet.right.size());
@@ -175,7 +166,7 @@ Status Run(const RunOptions& options, Context& ctx) {
   if (progress) ctx.err << "\r";
   const double wall_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-  const double data_s = NsToSeconds(std::min(end, (*reader)->end_ns()) - begin);
+  const double data_s = NsToSeconds(std::min(end, reader->end_ns()) - begin);
 
   std::error_code ec;
   fs::create_directories(options.out_dir, ec);

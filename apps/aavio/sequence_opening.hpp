@@ -1,0 +1,22 @@
+#pragma once
+/// What the commands that process a sequence share: describe it, load its calibration (or the
+/// one given with --calib), and open a packet reader that checks events against the sensor size.
+
+#include <memory>
+#include <string>
+
+#include "aavio/common/status.hpp"
+#include "aavio/io/calibration.hpp"
+#include "aavio/io/sequence.hpp"
+
+namespace aavio::cli {
+
+struct OpenedSequence {
+  io::SequenceDescription description;
+  io::LoadedCalibration calibration;
+  std::unique_ptr<io::SequenceReader> reader;
+};
+
+Expected<OpenedSequence> OpenSequence(const std::string& path, const std::string& calibration);
+
+}  // namespace aavio::cli
