@@ -48,36 +48,50 @@ DepthMap::DepthMap(const RectifiedStereo& stereo, const geometry::RigidTransform
     : stereo_(stereo),
       T_world_frame_(T_world_frame),
       t_ns_(t_ns),
-      cells_(static_cast<std::size_t>(stereo.width) * static_cast<std::size_t>(stereo.height)) {}
+      index_(static_cast<std::size_t>(stereo.width) * static_cast<std::size_t>(stereo.height), -1) {
+}
 
 const DepthPoint* DepthMap::At(int x, int y) const {
-  const DepthPoint& p = cells_[static_cast<std::size_t>(y) * stereo_.width + x];
-  return p.rho > 0.0 ? &p : nullptr;
+  const std::int32_t slot = index_[static_cast<std::size_t>(y) * stereo_.width + x];
+  return slot < 0 ? nullptr : &points_[static_cast<std::size_t>(slot)];
 }
 
 void DepthMap::Place(int x, int y, const DepthPoint& point) {
-  DepthPoint& cell = cells_[static_cast<std::size_t>(y) * stereo_.width + x];
-  if (cell.rho <= 0.0) ++occupied_;
-  cell = point;
-  cell.u = static_cast<float>(x);  // snapped to the cell; the 3-D point follows from (u, v, ρ)
-  cell.v = static_cast<float>(y);
+  const std::size_t cell = static_cast<std::size_t>(y) * stereo_.width + x;
+  std::int32_t& slot = index_[cell];
+  if (slot < 0) {
+    slot = static_cast<std::int32_t>(points_.size());
+    points_.push_back(point);
+    cell_of_.push_back(static_cast<std::int32_t>(cell));
+    ++occupied_;
+  } else {
+    points_[static_cast<std::size_t>(slot)] = point;
+  }
+  DepthPoint& stored = points_[static_cast<std::size_t>(slot)];
+  stored.u = static_cast<float>(x);  // snapped to the cell; the 3-D point follows from (u, v, ρ)
+  stored.v = static_cast<float>(y);
+}
+
+void DepthMap::Remove(std::int32_t slot) {
+  index_[static_cast<std::size_t>(cell_of_[static_cast<std::size_t>(slot)])] = -1;
+  --occupied_;
 }
 
 void DepthMap::FuseCell(int x, int y, const DepthPoint& point, const FusionConfig& config) {
-  DepthPoint& cell = cells_[static_cast<std::size_t>(y) * stereo_.width + x];
-  if (cell.rho <= 0.0) {
+  const DepthPoint* cell = At(x, y);
+  if (cell == nullptr) {
     Place(x, y, point);
     return;
   }
-  if (Compatible(cell, point, config.compatibility_sigmas)) {
-    const DepthPoint fused = FuseStudentT(cell, point);
+  if (Compatible(*cell, point, config.compatibility_sigmas)) {
+    const DepthPoint fused = FuseStudentT(*cell, point);
     Place(x, y, fused);
     return;
   }
   // Occlusion: a clearly closer stored point stays; otherwise the new one replaces it only if
   // it is better in both variance and residual.
-  if (cell.rho - config.compatibility_sigmas * std::sqrt(cell.variance()) > point.rho) return;
-  if (point.variance() < cell.variance() && point.residual < cell.residual) Place(x, y, point);
+  if (cell->rho - config.compatibility_sigmas * std::sqrt(cell->variance()) > point.rho) return;
+  if (point.variance() < cell->variance() && point.residual < cell->residual) Place(x, y, point);
 }
 
 void DepthMap::Fuse(const DepthPoint& point, const FusionConfig& config) {
@@ -107,54 +121,53 @@ void DepthMap::InsertNaive(const DepthPoint& point) {
 }
 
 void DepthMap::Clean(double max_stddev, int min_age, double rho_lo, double rho_hi) {
-  for (DepthPoint& p : cells_) {
-    if (p.rho <= 0.0) continue;
+  for (std::size_t slot = 0; slot < points_.size(); ++slot) {
+    if (!Live(slot)) continue;
+    const DepthPoint& p = points_[slot];
     if (std::sqrt(p.variance()) > max_stddev || p.age < min_age || p.rho < rho_lo ||
         p.rho > rho_hi) {
-      p = DepthPoint{};
-      p.rho = 0.0;
-      --occupied_;
+      Remove(static_cast<std::int32_t>(slot));
     }
   }
 }
 
 void DepthMap::Regularize(const RegularizationConfig& config, double compatibility_sigmas) {
-  const std::vector<DepthPoint> before = cells_;
+  // Neighbours are read from the map as it was before this pass.
+  const std::vector<std::int32_t> index_before = index_;
+  const std::vector<DepthPoint> points_before = points_;
   const int w = stereo_.width, h = stereo_.height, r = config.radius;
-  for (int y = 0; y < h; ++y) {
-    for (int x = 0; x < w; ++x) {
-      const DepthPoint& p = before[static_cast<std::size_t>(y) * w + x];
-      if (p.rho <= 0.0) continue;
-      int neighbours = 0;
-      std::vector<const DepthPoint*> close;
-      for (int yy = std::max(0, y - r); yy <= std::min(h - 1, y + r); ++yy) {
-        for (int xx = std::max(0, x - r); xx <= std::min(w - 1, x + r); ++xx) {
-          const DepthPoint& q = before[static_cast<std::size_t>(yy) * w + xx];
-          if (q.rho <= 0.0 || (xx == x && yy == y)) continue;
-          ++neighbours;
-          if (Compatible(p, q, compatibility_sigmas)) close.push_back(&q);
-        }
+  for (std::size_t slot = 0; slot < points_before.size(); ++slot) {
+    if (!Live(slot)) continue;
+    const DepthPoint& p = points_before[slot];
+    const int x = cell_of_[slot] % w, y = cell_of_[slot] / w;
+    int neighbours = 0;
+    std::vector<const DepthPoint*> close;
+    for (int yy = std::max(0, y - r); yy <= std::min(h - 1, y + r); ++yy) {
+      for (int xx = std::max(0, x - r); xx <= std::min(w - 1, x + r); ++xx) {
+        const std::int32_t q_slot = index_before[static_cast<std::size_t>(yy) * w + xx];
+        if (q_slot < 0 || (xx == x && yy == y)) continue;
+        const DepthPoint& q = points_before[static_cast<std::size_t>(q_slot)];
+        ++neighbours;
+        if (Compatible(p, q, compatibility_sigmas)) close.push_back(&q);
       }
-      DepthPoint& out = cells_[static_cast<std::size_t>(y) * w + x];
-      if (neighbours <= config.min_neighbours) continue;
-      if (static_cast<int>(close.size()) <= config.min_close_neighbours) {
-        out = DepthPoint{};  // an outlier among many neighbours
-        --occupied_;
-        continue;
-      }
-      DepthPoint fused = p;
-      for (const DepthPoint* q : close)
-        fused = FuseStudentT(fused, *q);
-      out.rho = fused.rho;
     }
+    if (neighbours <= config.min_neighbours) continue;
+    if (static_cast<int>(close.size()) <= config.min_close_neighbours) {
+      Remove(static_cast<std::int32_t>(slot));  // an outlier among many neighbours
+      continue;
+    }
+    DepthPoint fused = p;
+    for (const DepthPoint* q : close)
+      fused = FuseStudentT(fused, *q);
+    points_[slot].rho = fused.rho;
   }
 }
 
 std::vector<DepthPoint> DepthMap::Points() const {
   std::vector<DepthPoint> points;
   points.reserve(occupied_);
-  for (const DepthPoint& p : cells_) {
-    if (p.rho > 0.0) points.push_back(p);
+  for (std::size_t slot = 0; slot < points_.size(); ++slot) {
+    if (Live(slot)) points.push_back(points_[slot]);
   }
   return points;
 }

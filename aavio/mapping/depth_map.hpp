@@ -2,6 +2,7 @@
 /// The semi-dense inverse-depth map of one frame (algorithm.md §4.8): a grid of cells, each
 /// empty or holding one DepthPoint, and the Student-t fusion rules that fill it.
 
+#include <cstdint>
 #include <vector>
 
 #include "aavio/common/time.hpp"
@@ -28,7 +29,7 @@ class DepthMap {
   /// Neighbourhood regularisation (§4.10).
   void Regularize(const RegularizationConfig& config, double compatibility_sigmas);
 
-  /// The occupied cells' points (in cell order).
+  /// The occupied cells' points (in the order their cells were first filled: deterministic).
   std::vector<DepthPoint> Points() const;
   std::size_t size() const;
   const geometry::RigidTransform& T_world_frame() const { return T_world_frame_; }
@@ -39,11 +40,18 @@ class DepthMap {
  private:
   void FuseCell(int x, int y, const DepthPoint& point, const FusionConfig& config);
   void Place(int x, int y, const DepthPoint& point);
+  void Remove(std::int32_t slot);
+  bool Live(std::size_t slot) const {
+    return index_[static_cast<std::size_t>(cell_of_[slot])] == static_cast<std::int32_t>(slot);
+  }
 
   RectifiedStereo stereo_;
   geometry::RigidTransform T_world_frame_;
   TimeNs t_ns_;
-  std::vector<DepthPoint> cells_;  // one per pixel; rho = 0 marks an empty cell
+  // A grid of slot indices (−1: empty cell) into the points; removed slots stay as holes.
+  std::vector<std::int32_t> index_;
+  std::vector<DepthPoint> points_;
+  std::vector<std::int32_t> cell_of_;  // per slot
   std::size_t occupied_ = 0;
 };
 
