@@ -184,7 +184,7 @@ bool RefineOne(const RefinementInput& in, const Match& m, const RectifiedStereo&
         }
         lambda *= 10.0;
       }
-      if (!improved || std::abs(step) < 1e-4 * rho) break;
+      if (!improved || std::abs(step) < 1e-3 * rho) break;
       // Re-estimate the scale where we are now (IRLS) and re-weigh (scale_at leaves r(ρ) in raw).
       s2 = scale_at(rho);
       Weigh(raw, f.size(), nu, s2, e_ptr);
