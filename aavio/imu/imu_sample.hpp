@@ -9,8 +9,8 @@ namespace aavio::imu {
 
 struct ImuSample {
   TimeNs t_ns = 0;
-  Eigen::Vector3d gyro_rad_s = Eigen::Vector3d::Zero();   ///< angular velocity
-  Eigen::Vector3d accel_m_s2 = Eigen::Vector3d::Zero();   ///< specific force (gravity included)
+  Eigen::Vector3d gyro_rad_s = Eigen::Vector3d::Zero();  ///< angular velocity
+  Eigen::Vector3d accel_m_s2 = Eigen::Vector3d::Zero();  ///< specific force (gravity included)
 };
 
 }  // namespace aavio::imu

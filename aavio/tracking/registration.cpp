@@ -1,0 +1,148 @@
+#include "aavio/tracking/registration.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "aavio/geometry/rotation.hpp"
+
+namespace aavio::tracking {
+namespace {
+
+// Bilinear value of a float or uint8 image at (u, v); the caller checks the bounds.
+template <typename T>
+double Bilinear(const cv::Mat& image, double u, double v) {
+  const int x0 = static_cast<int>(u), y0 = static_cast<int>(v);
+  const double fx = u - x0, fy = v - y0;
+  const T* a = image.ptr<T>(y0) + x0;
+  const T* b = image.ptr<T>(y0 + 1) + x0;
+  return (1 - fx) * (1 - fy) * static_cast<double>(a[0]) +
+         fx * (1 - fy) * static_cast<double>(a[1]) + (1 - fx) * fy * static_cast<double>(b[0]) +
+         fx * fy * static_cast<double>(b[1]);
+}
+
+}  // namespace
+
+geometry::RigidTransform ApplyIncrement(const geometry::RigidTransform& T_ref_cur,
+                                        const Eigen::Matrix<double, 6, 1>& theta) {
+  const Eigen::Matrix3d Rc = geometry::CayleyToRotation(theta.head<3>());
+  return {geometry::Orthonormalize(Rc * T_ref_cur.R),
+          Eigen::Vector3d(theta.tail<3>() + Rc * T_ref_cur.t)};
+}
+
+Registration::Registration(std::span<const Eigen::Vector3d> points_ref, const Camera& camera,
+                           const TrackingConfig& config, std::uint64_t seed)
+    : camera_(camera), config_(config) {
+  // A random subset of max_points (partial Fisher–Yates, platform-independent draws).
+  std::vector<std::size_t> order(points_ref.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::mt19937_64 rng(seed);
+  const std::size_t n = std::min(order.size(), static_cast<std::size_t>(config.max_points));
+  for (std::size_t i = 0; i < n; ++i) {
+    std::swap(order[i], order[i + static_cast<std::size_t>(rng() % (order.size() - i))]);
+    points_.push_back(points_ref[order[i]]);
+  }
+}
+
+void Registration::Linearize(const RegistrationImages& images,
+                             const geometry::RigidTransform& T_ref_cur,
+                             std::span<const int> indices, Eigen::VectorXd* residuals,
+                             Eigen::Matrix<double, Eigen::Dynamic, 6>* jacobian, int* valid) const {
+  const Eigen::Matrix3d Rt = T_ref_cur.R.transpose();
+  const double f = camera_.f, delta = config_.huber_threshold;
+  residuals->resize(static_cast<Eigen::Index>(indices.size()));
+  if (jacobian) jacobian->resize(static_cast<Eigen::Index>(indices.size()), 6);
+  *valid = 0;
+  for (std::size_t k = 0; k < indices.size(); ++k) {
+    const Eigen::Index row = static_cast<Eigen::Index>(k);
+    const Eigen::Vector3d& p = points_[static_cast<std::size_t>(indices[k])];
+    const Eigen::Vector3d q = Rt * (p - T_ref_cur.t);
+    double r = 255.0;
+    Eigen::Matrix<double, 1, 6> J = Eigen::Matrix<double, 1, 6>::Zero();
+    if (q.z() > 1e-6) {
+      const double u = f * q.x() / q.z() + camera_.cx, v = f * q.y() / q.z() + camera_.cy;
+      const bool inside =
+          u >= 0.0 && v >= 0.0 && u < camera_.width - 1.0 && v < camera_.height - 1.0;
+      if (inside && images.valid_mask.at<std::uint8_t>(static_cast<int>(v + 0.5),
+                                                       static_cast<int>(u + 0.5)) > 125) {
+        r = Bilinear<std::uint8_t>(images.negative_ts, u, v);
+        const Eigen::RowVector2d grad(Bilinear<float>(images.grad_u, u, v),
+                                      Bilinear<float>(images.grad_v, u, v));
+        Eigen::Matrix<double, 2, 3> dpi;
+        dpi << f / q.z(), 0.0, -f * q.x() / (q.z() * q.z()), 0.0, f / q.z(),
+            -f * q.y() / (q.z() * q.z());
+        const Eigen::RowVector3d g = grad * dpi;  // ∂r/∂q
+        J.head<3>() = 2.0 * g * Rt * geometry::Hat(p);
+        J.tail<3>() = -g * Rt;
+        ++*valid;
+      }
+    }
+    // Huber: w = 1 below δ, δ/r above; the solver sees √w r (and √w J).
+    const double w = r <= delta ? 1.0 : delta / r;
+    (*residuals)(row) = std::sqrt(w) * r;
+    if (jacobian) jacobian->row(row) = std::sqrt(w) * J;
+  }
+}
+
+RegistrationResult Registration::Solve(const RegistrationImages& images,
+                                       const geometry::RigidTransform& T_ref_cur_init) const {
+  RegistrationResult result;
+  result.T_ref_cur = T_ref_cur_init;
+  const int n = static_cast<int>(points_.size());
+  const int batch = std::min(config_.batch_size, n);
+  if (batch <= 0) return result;
+  const int batches = std::max(1, n / batch);
+  std::vector<int> indices(static_cast<std::size_t>(batch));
+  Eigen::VectorXd r, r_trial;
+  Eigen::Matrix<double, Eigen::Dynamic, 6> J;
+  int valid = 0;
+  double first_cost = -1.0, last_cost = 0.0;
+  double lambda = 1e-4;
+  bool small_reduction = false;
+  for (int iteration = 0; iteration < config_.max_iterations && !small_reduction; ++iteration) {
+    const int b = iteration % batches;
+    std::iota(indices.begin(), indices.end(), b * batch);
+    Linearize(images, result.T_ref_cur, indices, &r, &J, &valid);
+    const double cost = r.squaredNorm() / batch;
+    if (first_cost < 0.0) {
+      first_cost = cost;
+      result.valid_fraction = static_cast<double>(valid) / batch;
+    }
+    const Eigen::Matrix<double, 6, 6> H = J.transpose() * J;
+    const Eigen::Matrix<double, 6, 1> g = J.transpose() * r;
+    // One LM step on this batch (the damping reset per batch, as the reference).
+    bool accepted = false;
+    Eigen::Matrix<double, 6, 1> theta = Eigen::Matrix<double, 6, 1>::Zero();
+    for (int attempt = 0; attempt < 6 && !accepted; ++attempt) {
+      Eigen::Matrix<double, 6, 6> A = H;
+      A.diagonal() += lambda * H.diagonal() + Eigen::Matrix<double, 6, 1>::Constant(1e-9);
+      theta = A.ldlt().solve(-g);
+      const geometry::RigidTransform trial = ApplyIncrement(result.T_ref_cur, theta);
+      int trial_valid = 0;
+      Linearize(images, trial, indices, &r_trial, nullptr, &trial_valid);
+      const double trial_cost = r_trial.squaredNorm() / batch;
+      if (trial_cost < cost) {
+        result.T_ref_cur = trial;
+        last_cost = trial_cost;
+        lambda = std::max(1e-7, lambda * 0.1);
+        accepted = true;
+        small_reduction = (cost - trial_cost) / cost < config_.function_tolerance;
+      } else {
+        lambda *= 10.0;
+      }
+    }
+    result.iterations = iteration + 1;
+    if (!accepted) {
+      last_cost = cost;
+      if (batches == 1) break;  // no progress possible on the only batch
+    } else if (theta.norm() < config_.step_tolerance * 1e-2) {
+      break;
+    }
+  }
+  result.initial_cost = std::max(0.0, first_cost);
+  result.final_cost = last_cost;
+  return result;
+}
+
+}  // namespace aavio::tracking

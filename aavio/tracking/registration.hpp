@@ -1,0 +1,71 @@
+#pragma once
+/// Time-surface registration (algorithm.md §5.2–5.5): the pose of the current camera relative to
+/// the map's reference frame that puts the map points on the dark ridges of the current negative
+/// time surface,
+///   min_θ Σ_i Huber( N(π(T_cur,ref(θ) p_i)) ),  N = negative TS (bilinear),
+/// parametrised by a Cayley + translation increment on T_ref,cur (left composition in the
+/// reference frame), solved by Levenberg–Marquardt over mini-batches of a random subset of the
+/// map, one LM step per batch, with the analytic Jacobian ∇N · ∂π/∂q · ∂q/∂θ,
+///   ∂q/∂δ = −Rᵀ, ∂q/∂c = 2 Rᵀ [p]×  (at θ = 0, (R, t) = T_ref,cur, p in the reference frame).
+
+#include <Eigen/Core>
+#include <opencv2/core/mat.hpp>
+#include <random>
+#include <span>
+#include <vector>
+
+#include "aavio/geometry/rigid_transform.hpp"
+#include "aavio/tracking/tracking_config.hpp"
+
+namespace aavio::tracking {
+
+/// The rectified left camera: focal length and principal point [px], size.
+struct Camera {
+  int width = 0, height = 0;
+  double f = 0.0, cx = 0.0, cy = 0.0;
+};
+
+struct RegistrationImages {
+  const cv::Mat& negative_ts;  ///< CV_8UC1
+  const cv::Mat& grad_u;       ///< CV_32FC1, Sobel/8 of negative_ts
+  const cv::Mat& grad_v;
+  const cv::Mat& valid_mask;  ///< CV_8UC1, > 125 = usable
+};
+
+struct RegistrationResult {
+  geometry::RigidTransform T_ref_cur;
+  int iterations = 0;
+  double initial_cost = 0.0, final_cost = 0.0;  ///< mean robust cost per point
+  double valid_fraction = 0.0;  ///< share of points landing inside the image and mask
+};
+
+class Registration {
+ public:
+  /// `points_ref`: the map in its reference frame. A random subset of max_points is drawn from
+  /// `seed` (same seed, same subset).
+  Registration(std::span<const Eigen::Vector3d> points_ref, const Camera& camera,
+               const TrackingConfig& config, std::uint64_t seed);
+
+  RegistrationResult Solve(const RegistrationImages& images,
+                           const geometry::RigidTransform& T_ref_cur_init) const;
+
+  /// Residuals (robustly weighted: √w r) and their Jacobian rows for `indices` at T_ref_cur;
+  /// out-of-image points give r = 255 (weighted) and a zero row. Exposed for tests.
+  void Linearize(const RegistrationImages& images, const geometry::RigidTransform& T_ref_cur,
+                 std::span<const int> indices, Eigen::VectorXd* residuals,
+                 Eigen::Matrix<double, Eigen::Dynamic, 6>* jacobian, int* valid) const;
+
+  std::size_t size() const { return points_.size(); }
+  const std::vector<Eigen::Vector3d>& points() const { return points_; }  ///< the chosen subset
+
+ private:
+  std::vector<Eigen::Vector3d> points_;  // the chosen subset, reference frame
+  Camera camera_;
+  TrackingConfig config_;
+};
+
+/// Applies an increment θ = (c, δ) to T_ref_cur: R ← R(c) R, t ← δ + R(c) t, R re-orthonormalised.
+geometry::RigidTransform ApplyIncrement(const geometry::RigidTransform& T_ref_cur,
+                                        const Eigen::Matrix<double, 6, 1>& theta);
+
+}  // namespace aavio::tracking
