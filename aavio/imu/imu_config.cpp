@@ -12,7 +12,10 @@ Status ImuConfig::Validate() const {
                       " rad/s; a gyroscope bias is a few mrad/s (is it in deg/s?)");
   }
   check.InRange("static_init_s", static_init_s, 0.01, 600.0)
-      .InRange("online_window", online_window, 2, 100000);
+      .InRange("static_max_std_rad_s", static_max_std_rad_s, 1e-6, 1.0)
+      .InRange("online_window", online_window, 2, 100000)
+      .InRange("online_max_rate_rad_s", online_max_rate_rad_s, 1e-6, 1.0)
+      .InRange("online_gain", online_gain, 1e-4, 1.0);
   return check.status();
 }
 

@@ -20,7 +20,12 @@ struct ImuConfig {
   GyroBiasMode bias_mode = GyroBiasMode::kFixed;
   std::array<double, 3> gyro_bias_rad_s{0.0, 0.0, 0.0};  ///< in the IMU frame ([ICRA] zero)
   double static_init_s = 1.0;  ///< length of the static interval for static_init [s]
-  int online_window = 20;      ///< tracked rotations in the online estimate's window
+  /// static_init accepts the interval only if no axis' readings have a larger std [rad/s]
+  double static_max_std_rad_s = 0.02;
+  int online_window = 20;      ///< consecutive tracked ticks in the online estimate's window
+  /// online: a re-estimate further than this from the current bias is a tracking failure [rad/s]
+  double online_max_rate_rad_s = 0.05;
+  double online_gain = 0.2;  ///< online: weight of a new window's estimate once warmed up
 
   template <typename V>
   void VisitFields(V&& v) {
@@ -28,7 +33,10 @@ struct ImuConfig {
     v("bias_mode", bias_mode);
     v("gyro_bias_rad_s", gyro_bias_rad_s);
     v("static_init_s", static_init_s);
+    v("static_max_std_rad_s", static_max_std_rad_s);
     v("online_window", online_window);
+    v("online_max_rate_rad_s", online_max_rate_rad_s);
+    v("online_gain", online_gain);
   }
   Status Validate() const;
 };

@@ -10,6 +10,9 @@
 namespace aavio::tracking {
 namespace {
 
+constexpr double kMaxCayleyStep = 0.02;       // ≈ 2.3° per LM step
+constexpr double kMaxTranslationStep = 0.05;  // m per LM step
+
 // Bilinear value of a float or uint8 image at (u, v); the caller checks the bounds.
 template <typename T>
 double Bilinear(const cv::Mat& image, double u, double v) {
@@ -97,7 +100,16 @@ RegistrationResult Registration::Solve(const RegistrationImages& images,
   Eigen::VectorXd r, r_trial;
   Eigen::Matrix<double, Eigen::Dynamic, 6> J;
   int valid = 0;
-  double first_cost = -1.0, last_cost = 0.0;
+  // Divergence tests compare costs on the same points: all of them, before and after.
+  std::vector<int> all(static_cast<std::size_t>(n));
+  std::iota(all.begin(), all.end(), 0);
+  auto mean_cost = [&](const geometry::RigidTransform& T, double* valid_fraction) {
+    int all_valid = 0;
+    Linearize(images, T, all, &r_trial, nullptr, &all_valid);
+    if (valid_fraction) *valid_fraction = static_cast<double>(all_valid) / n;
+    return r_trial.squaredNorm() / n;
+  };
+  result.initial_cost = mean_cost(result.T_ref_cur, &result.valid_fraction);
   double lambda = 1e-4;
   bool small_reduction = false;
   for (int iteration = 0; iteration < config_.max_iterations && !small_reduction; ++iteration) {
@@ -105,10 +117,6 @@ RegistrationResult Registration::Solve(const RegistrationImages& images,
     std::iota(indices.begin(), indices.end(), b * batch);
     Linearize(images, result.T_ref_cur, indices, &r, &J, &valid);
     const double cost = r.squaredNorm() / batch;
-    if (first_cost < 0.0) {
-      first_cost = cost;
-      result.valid_fraction = static_cast<double>(valid) / batch;
-    }
     const Eigen::Matrix<double, 6, 6> H = J.transpose() * J;
     const Eigen::Matrix<double, 6, 1> g = J.transpose() * r;
     // One LM step on this batch (the damping reset per batch, as the reference).
@@ -118,13 +126,17 @@ RegistrationResult Registration::Solve(const RegistrationImages& images,
       Eigen::Matrix<double, 6, 6> A = H;
       A.diagonal() += lambda * H.diagonal() + Eigen::Matrix<double, 6, 1>::Constant(1e-9);
       theta = A.ldlt().solve(-g);
+      // A step larger than a tick's plausible motion comes from a degenerate batch (few edges,
+      // flat surface): shorten it rather than jump (Cayley c ≈ θ/2).
+      const double scale = std::max({1.0, theta.head<3>().norm() / kMaxCayleyStep,
+                                     theta.tail<3>().norm() / kMaxTranslationStep});
+      theta /= scale;
       const geometry::RigidTransform trial = ApplyIncrement(result.T_ref_cur, theta);
       int trial_valid = 0;
       Linearize(images, trial, indices, &r_trial, nullptr, &trial_valid);
       const double trial_cost = r_trial.squaredNorm() / batch;
       if (trial_cost < cost) {
         result.T_ref_cur = trial;
-        last_cost = trial_cost;
         lambda = std::max(1e-7, lambda * 0.1);
         accepted = true;
         small_reduction = (cost - trial_cost) / cost < config_.function_tolerance;
@@ -134,14 +146,12 @@ RegistrationResult Registration::Solve(const RegistrationImages& images,
     }
     result.iterations = iteration + 1;
     if (!accepted) {
-      last_cost = cost;
       if (batches == 1) break;  // no progress possible on the only batch
     } else if (theta.norm() < config_.step_tolerance * 1e-2) {
       break;
     }
   }
-  result.initial_cost = std::max(0.0, first_cost);
-  result.final_cost = last_cost;
+  result.final_cost = mean_cost(result.T_ref_cur, nullptr);
   return result;
 }
 

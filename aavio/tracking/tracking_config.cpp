@@ -11,7 +11,9 @@ Status TrackingConfig::Validate() const {
       .InRange("max_iterations", max_iterations, 1, 1000)
       .Positive("huber_threshold", huber_threshold)
       .Positive("function_tolerance", function_tolerance)
-      .Positive("step_tolerance", step_tolerance);
+      .Positive("step_tolerance", step_tolerance)
+      .Positive("max_correction_deg", max_correction_deg)
+      .Positive("max_correction_m", max_correction_m);
   return check.status();
 }
 

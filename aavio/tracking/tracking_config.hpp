@@ -13,6 +13,10 @@ struct TrackingConfig {
   double huber_threshold = 50.0;     ///< robust loss threshold [TS levels]
   double function_tolerance = 1e-3;  ///< stop on relative cost reduction below it
   double step_tolerance = 1e-3;      ///< stop on relative step below it
+  /// Registration results further than this from the prediction count as divergence (aavio; the
+  /// reference has no such test): rotation [deg] and translation [m] per tick.
+  double max_correction_deg = 3.0;
+  double max_correction_m = 0.3;
 
   template <typename V>
   void VisitFields(V&& v) {
@@ -22,6 +26,8 @@ struct TrackingConfig {
     v("huber_threshold", huber_threshold);
     v("function_tolerance", function_tolerance);
     v("step_tolerance", step_tolerance);
+    v("max_correction_deg", max_correction_deg);
+    v("max_correction_m", max_correction_m);
   }
   Status Validate() const;
 };

@@ -22,6 +22,7 @@
 #include "cli.hpp"
 #include "config_resolution.hpp"
 #include "sequence_opening.hpp"
+#include "track_gt_map.hpp"
 
 namespace aavio::cli {
 namespace {
@@ -31,6 +32,7 @@ namespace fs = std::filesystem;
 struct RunOptions {
   std::string sequence, calibration, out_dir;
   bool gt_poses = false;
+  bool gt_map = false;
   bool quiet = false;
   double start_s = 0.0, duration_s = 0.0;
   ConfigSources config;
@@ -85,6 +87,9 @@ Status Run(const RunOptions& options, Context& ctx) {
   const TimeNs end =
       options.duration_s > 0.0 ? begin + SecondsToNs(options.duration_s) : reader->end_ns();
   if (options.start_s > 0.0) AAVIO_RETURN_IF_ERROR(reader->Seek(begin));
+  if (options.gt_map) {
+    return RunTrackingOnGtMap({&*opened, &*poses, &*config, begin, end, options.out_dir}, ctx);
+  }
 
   std::vector<io::GtDepthEntry> gt_depth;
   if (!d->gt_depth.empty()) {
@@ -226,6 +231,8 @@ void RegisterRun(CLI::App& app, Context& ctx) {
   sub->add_option("--calib", options->calibration, "Calibration, if the sequence names none");
   sub->add_flag("--gt-poses", options->gt_poses,
                 "Mapping only, with the sequence's ground-truth poses instead of tracking");
+  sub->add_flag("--gt-map", options->gt_map,
+                "Tracking only, against maps built from the sequence's ground-truth depth");
   sub->add_option("--start", options->start_s, "Seconds to skip")->check(CLI::NonNegativeNumber);
   sub->add_option("--duration", options->duration_s, "Seconds to process (default: all)")
       ->check(CLI::NonNegativeNumber);
@@ -233,10 +240,10 @@ void RegisterRun(CLI::App& app, Context& ctx) {
   AddConfigOptions(*sub, &options->config);
   sub->callback([&ctx, options] {
     ctx.action = [&ctx, options] {
-      if (!options->gt_poses) {
+      if (!options->gt_poses && !options->gt_map) {
         ctx.err << "aavio run: the full odometry (tracking) is not built yet (issues #7, #8); "
                    "`aavio run SEQUENCE --gt-poses --out DIR` runs mapping with ground-truth "
-                   "poses\n";
+                   "poses, `--gt-map` tracking against ground-truth maps\n";
         return static_cast<int>(kExitNotImplemented);
       }
       const Status status = Run(*options, ctx);

@@ -1,0 +1,109 @@
+#include "aavio/tracking/tracker.hpp"
+
+#include <chrono>
+#include <cmath>
+
+#include "aavio/geometry/rotation.hpp"
+#include "aavio/imu/gyro_preintegration.hpp"
+
+namespace aavio::tracking {
+namespace {
+using Clock = std::chrono::steady_clock;
+double MsSince(Clock::time_point t) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
+}
+}  // namespace
+
+geometry::RigidTransform PredictPose(
+    const geometry::RigidTransform& T_world_prev,
+    const std::optional<geometry::RigidTransform>& T_world_prevprev,
+    const std::optional<Eigen::Matrix3d>& delta_R_cam) {
+  geometry::RigidTransform pred = T_world_prev;
+  if (T_world_prevprev) {
+    pred.t = T_world_prev.t + (T_world_prev.t - T_world_prevprev->t);
+    if (!delta_R_cam) {
+      pred.R = geometry::Orthonormalize(T_world_prev.R *
+                                        (T_world_prevprev->R.transpose() * T_world_prev.R));
+    }
+  }
+  if (delta_R_cam) pred.R = geometry::Orthonormalize(T_world_prev.R * *delta_R_cam);
+  return pred;
+}
+
+Tracker::Tracker(const Camera& camera, const TrackingConfig& config,
+                 const imu::ImuConfig& imu_config, const Eigen::Matrix3d& R_imu_cam,
+                 std::uint64_t seed)
+    : camera_(camera),
+      config_(config),
+      imu_config_(imu_config),
+      R_imu_cam_(R_imu_cam),
+      seed_(seed) {}
+
+void Tracker::Reset(TimeNs t_ns, const geometry::RigidTransform& T_world_cam) {
+  t_prev_ = t_ns;
+  T_prev_ = T_world_cam;
+  T_prevprev_.reset();
+  prev_tracked_ = false;
+  if (!bias_) bias_.emplace(imu_config_, t_ns);
+}
+
+TrackingResult Tracker::Track(const events::Observation& obs, const cv::Mat& valid_mask,
+                              std::span<const imu::ImuSample> imu) {
+  TrackingResult result;
+  result.t_ns = obs.t_ns;
+  auto start = Clock::now();
+  if (!bias_) bias_.emplace(imu_config_, t_prev_);
+  bias_->AddSamples(imu);
+  std::optional<Eigen::Matrix3d> delta_R_imu, delta_R_cam;
+  if (!imu.empty()) {
+    Expected<Eigen::Matrix3d> delta = imu::IntegrateGyro(imu, t_prev_, obs.t_ns, bias_->bias());
+    if (delta) delta_R_imu = *delta;
+  }
+  if (imu_config_.use_gyro_prior && delta_R_imu)
+    delta_R_cam = imu::ImuToCameraRotation(*delta_R_imu, R_imu_cam_);
+  const geometry::RigidTransform predicted = PredictPose(T_prev_, T_prevprev_, delta_R_cam);
+  result.prediction_ms = MsSince(start);
+  result.T_world_cur = predicted;
+  result.T_world_predicted = predicted;
+  result.status = TrackingStatus::kNoMap;
+  if (map_ && static_cast<int>(map_->points_world.size()) >= config_.batch_size) {
+    start = Clock::now();
+    // The map in its reference frame; the increment acts on T_ref,cur.
+    const geometry::RigidTransform T_ref_world = map_->T_world_ref.Inverse();
+    std::vector<Eigen::Vector3d> points_ref;
+    points_ref.reserve(map_->points_world.size());
+    for (const Eigen::Vector3d& p : map_->points_world)
+      points_ref.push_back(T_ref_world * p);
+    const Registration registration(points_ref, camera_, config_,
+                                    seed_ ^ static_cast<std::uint64_t>(obs.t_ns));
+    const RegistrationImages images{obs.negative_ts_left, obs.grad_u, obs.grad_v, valid_mask};
+    result.registration = registration.Solve(images, T_ref_world * predicted);
+    result.registration_ms = MsSince(start);
+    const geometry::RigidTransform estimate = map_->T_world_ref * result.registration.T_ref_cur;
+    // Divergence: too few residuals inside the image, a cost that grew, or a pose implausibly
+    // far from the prediction (with the gyroscope: a rotation the IMU did not measure).
+    const geometry::RigidTransform correction = predicted.Inverse() * estimate;
+    const double rotation_deg = geometry::LogSO3(correction.R).norm() * 180.0 / M_PI;
+    const bool diverged = result.registration.valid_fraction < 0.3 ||
+                          result.registration.final_cost > 1.5 * result.registration.initial_cost ||
+                          rotation_deg > config_.max_correction_deg ||
+                          correction.t.norm() > config_.max_correction_m;
+    result.status = diverged ? TrackingStatus::kLost : TrackingStatus::kOk;
+    if (!diverged) result.T_world_cur = estimate;
+  }
+  // Online bias: the tracked rotation of this tick, in the IMU frame, against pre-integration.
+  if (result.status == TrackingStatus::kOk && delta_R_imu) {
+    const Eigen::Matrix3d tracked_cam = T_prev_.R.transpose() * result.T_world_cur.R;
+    bias_->AddTrackedTick(imu, t_prev_, obs.t_ns,
+                          R_imu_cam_ * tracked_cam * R_imu_cam_.transpose(), prev_tracked_);
+  }
+  prev_tracked_ = result.status == TrackingStatus::kOk;
+  // Lost or without a map: hold the prediction but forget the velocity (no run-away).
+  T_prevprev_ = result.status == TrackingStatus::kOk ? std::optional(T_prev_) : std::nullopt;
+  T_prev_ = result.T_world_cur;
+  t_prev_ = obs.t_ns;
+  ++ticks_;
+  return result;
+}
+
+}  // namespace aavio::tracking

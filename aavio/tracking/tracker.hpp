@@ -1,0 +1,76 @@
+#pragma once
+/// Tracking at every tick (algorithm.md §5): predict the pose — rotation from the gyroscope
+/// pre-integrated over the tick (or constant angular velocity without IMU), translation by
+/// constant velocity — then register the local map on the negative time surface from it.
+/// Divergence (too few valid residuals, a cost that grew, a rotation that disagrees with the
+/// gyroscope) holds the prediction and reports kLost, so that mapping can re-initialise at the
+/// last good pose.
+
+#include <optional>
+#include <span>
+
+#include "aavio/events/observation.hpp"
+#include "aavio/geometry/rigid_transform.hpp"
+#include "aavio/imu/gyro_bias_estimator.hpp"
+#include "aavio/imu/imu_config.hpp"
+#include "aavio/imu/imu_sample.hpp"
+#include "aavio/tracking/registration.hpp"
+
+namespace aavio::tracking {
+
+enum class TrackingStatus { kOk, kNoMap, kLost };
+
+/// What tracking registers against: map points in the world, and its reference pose.
+struct TrackingMap {
+  std::vector<Eigen::Vector3d> points_world;
+  geometry::RigidTransform T_world_ref;
+};
+
+struct TrackingResult {
+  TimeNs t_ns = 0;
+  geometry::RigidTransform T_world_cur;
+  geometry::RigidTransform T_world_predicted;  ///< the registration's starting point
+  TrackingStatus status = TrackingStatus::kNoMap;
+  RegistrationResult registration;
+  double prediction_ms = 0.0, registration_ms = 0.0;
+};
+
+/// The predicted pose: rotation R_prev·ΔR_cam from the gyroscope if given, else constant angular
+/// velocity; translation t_prev + (t_prev − t_prevprev).
+geometry::RigidTransform PredictPose(
+    const geometry::RigidTransform& T_world_prev,
+    const std::optional<geometry::RigidTransform>& T_world_prevprev,
+    const std::optional<Eigen::Matrix3d>& delta_R_cam);
+
+class Tracker {
+ public:
+  /// `R_imu_cam`: the rectified left camera → IMU rotation (see gyro_preintegration.hpp).
+  Tracker(const Camera& camera, const TrackingConfig& config, const imu::ImuConfig& imu_config,
+          const Eigen::Matrix3d& R_imu_cam, std::uint64_t seed);
+
+  /// Starts (or restarts, keeping the gyroscope bias estimate) at a known pose.
+  void Reset(TimeNs t_ns, const geometry::RigidTransform& T_world_cam);
+  void SetMap(std::shared_ptr<const TrackingMap> map) { map_ = std::move(map); }
+  /// The bias in use (configured, static-init or online estimate); valid after Reset.
+  Eigen::Vector3d gyro_bias() const { return bias_ ? bias_->bias() : Eigen::Vector3d::Zero(); }
+
+  /// One tick: `imu` must cover [previous tick, this tick] when the gyroscope prior is on.
+  TrackingResult Track(const events::Observation& obs, const cv::Mat& valid_mask,
+                       std::span<const imu::ImuSample> imu);
+
+ private:
+  Camera camera_;
+  TrackingConfig config_;
+  imu::ImuConfig imu_config_;
+  Eigen::Matrix3d R_imu_cam_;
+  std::optional<imu::GyroBiasEstimator> bias_;
+  std::uint64_t seed_;
+  std::shared_ptr<const TrackingMap> map_;
+  TimeNs t_prev_ = 0;
+  geometry::RigidTransform T_prev_;
+  std::optional<geometry::RigidTransform> T_prevprev_;
+  bool prev_tracked_ = false;  // the previous pose came from registration
+  std::int64_t ticks_ = 0;
+};
+
+}  // namespace aavio::tracking
