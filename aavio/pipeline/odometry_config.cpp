@@ -6,7 +6,8 @@ Status PipelineConfig::Validate() const {
   FieldChecker check;
   check.NonNegative("random_seed", random_seed)
       .InRange("num_threads", num_threads, 0, 1024)
-      .InRange("max_buffered_events", max_buffered_events, 1000, 1'000'000'000);
+      .InRange("max_buffered_events", max_buffered_events, 1000, 1'000'000'000)
+      .InRange("max_lost_ticks", max_lost_ticks, 1, 100000);
   return check.status();
 }
 

@@ -16,12 +16,15 @@ struct PipelineConfig {
   std::int64_t random_seed = 1;  ///< seeds every random choice; same seed, same trajectory
   int num_threads = 0;           ///< worker threads, 0 = all cores; results do not depend on it
   int max_buffered_events = 5'000'000;  ///< per camera, oldest dropped beyond ([ESVO] 5e6)
+  /// Consecutive lost ticks after which mapping re-initialises (SGM) at the held pose (aavio)
+  int max_lost_ticks = 5;
 
   template <typename V>
   void VisitFields(V&& v) {
     v("random_seed", random_seed);
     v("num_threads", num_threads);
     v("max_buffered_events", max_buffered_events);
+    v("max_lost_ticks", max_lost_ticks);
   }
   Status Validate() const;
 };

@@ -25,6 +25,7 @@ int RunCli(const std::vector<std::string>& args, std::ostream& out, std::ostream
   RegisterSimulate(app, ctx);
   RegisterRepresentations(app, ctx);
   RegisterRun(app, ctx);
+  RegisterDemo(app, ctx);
   RegisterPlanned(app, ctx);
 
   std::vector<std::string> reversed(args.rbegin(), args.rend() - (args.empty() ? 0 : 1));

@@ -35,6 +35,7 @@ void RegisterConvert(CLI::App& app, Context& ctx);
 void RegisterSimulate(CLI::App& app, Context& ctx);
 void RegisterRepresentations(CLI::App& app, Context& ctx);
 void RegisterRun(CLI::App& app, Context& ctx);
+void RegisterDemo(CLI::App& app, Context& ctx);
 void RegisterPlanned(CLI::App& app, Context& ctx);  // subcommands not built yet
 
 /// Runs `aavio` with the given arguments (argv[0] included) and returns the exit code.

@@ -15,7 +15,6 @@ void RegisterPlanned(CLI::App& app, Context& ctx) {
   };
   static const Planned kPlanned[] = {
       {"eval", "Evaluate a trajectory (ATE, RPE) or a run against ground truth", "#9"},
-      {"demo", "Simulate a short sequence, run, evaluate and print the result", "#8"},
       {"report", "Plots and a self-contained report.html of one or more runs", "#9"},
   };
   for (const Planned& planned : kPlanned) {

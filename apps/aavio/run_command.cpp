@@ -1,13 +1,18 @@
-// `aavio run`: today the mapping-only mode (`--gt-poses`): the sequence's ground-truth poses
-// drive mapping, and the maps are scored against its ground-truth depth (design.md §6). The full
-// odometry (tracking) lands with issues #7 and #8.
+// `aavio run`: the full odometry (odometry_run.cpp), and two modes that isolate one half of it:
+// mapping only (`--gt-poses`: the sequence's ground-truth poses drive mapping, and the maps are
+// scored against its ground-truth depth, design.md §6) and tracking only (`--gt-map`,
+// track_gt_map.cpp).
 #include <unistd.h>
+
+#include <atomic>
+#include <csignal>
 
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <opencv2/core.hpp>
 #include <ostream>
 
 #include "aavio/common/format.hpp"
@@ -22,6 +27,7 @@
 #include "cli.hpp"
 #include "config_resolution.hpp"
 #include "sequence_opening.hpp"
+#include "odometry_run.hpp"
 #include "track_gt_map.hpp"
 
 namespace aavio::cli {
@@ -33,6 +39,7 @@ struct RunOptions {
   std::string sequence, calibration, out_dir;
   bool gt_poses = false;
   bool gt_map = false;
+  bool esvo = false;
   bool quiet = false;
   double start_s = 0.0, duration_s = 0.0;
   ConfigSources config;
@@ -72,12 +79,63 @@ nlohmann::json DepthJson(const eval::DepthErrorSummary& s) {
           {"frames", s.frames}};
 }
 
-Status Run(const RunOptions& options, Context& ctx) {
-  const auto wall_start = std::chrono::steady_clock::now();
+std::atomic<bool> g_interrupted{false};  // Ctrl-C during a run: stop and write what is done
+extern "C" void OnInterrupt(int) { g_interrupted.store(true); }
+
+// The ESVO-like configuration (ESVO's newest-event selection of 10k points, static stereo only,
+// no IMU prior), so that the paper's comparisons run on the same data; later --set still apply.
+const std::vector<std::string> kEsvoOverrides = {
+    "edge_sampling.mode=newest_events", "edge_sampling.num_points=10000",
+    "mapping.max_points=10000", "mapping.temporal_stereo.enabled=false",
+    "imu.use_gyro_prior=false"};
+
+Status RunFull(RunOptions options, OpenedSequence& opened, Context& ctx) {
+  if (options.config.preset.empty()) {
+    // No preset named: the one for this camera's resolution.
+    options.config.preset = opened.calibration.rig.width() <= 400 ? "rpg" : "dsec";
+    if (!options.quiet) {
+      ctx.err << "aavio run: no --preset given; using '" << options.config.preset << "' for "
+              << opened.calibration.rig.width() << "x" << opened.calibration.rig.height()
+              << " cameras\n";
+    }
+  }
+  if (options.esvo) {
+    options.config.overrides.insert(options.config.overrides.begin(), kEsvoOverrides.begin(),
+                                    kEsvoOverrides.end());
+  }
   Expected<pipeline::OdometryConfig> config = ResolveOdometryConfig(options.config);
   if (!config) return config.status();
+  io::SequenceReader* reader = opened.reader.get();
+  const TimeNs begin = reader->start_ns() + SecondsToNs(options.start_s);
+  const TimeNs end =
+      options.duration_s > 0.0 ? begin + SecondsToNs(options.duration_s) : reader->end_ns();
+  if (options.start_s > 0.0) AAVIO_RETURN_IF_ERROR(reader->Seek(begin));
+  cv::setNumThreads(config->pipeline.num_threads);
+  OdometryRunRequest request;
+  request.sequence = &opened;
+  request.config = &*config;
+  request.config_origin =
+      DescribeSources(options.config) + (options.esvo ? " (ESVO-like mode, --esvo)" : "");
+  request.mode = options.esvo ? "esvo" : "full";
+  request.begin_ns = begin;
+  request.end_ns = end;
+  request.out_dir = options.out_dir;
+  request.progress = !options.quiet && isatty(STDERR_FILENO);
+  g_interrupted.store(false);
+  request.interrupted = &g_interrupted;
+  auto previous = std::signal(SIGINT, OnInterrupt);
+  Expected<OdometryRunResult> result = RunOdometry(request, ctx);
+  std::signal(SIGINT, previous);
+  return result.status();
+}
+
+Status Run(const RunOptions& options, Context& ctx) {
+  const auto wall_start = std::chrono::steady_clock::now();
   Expected<OpenedSequence> opened = OpenSequence(options.sequence, options.calibration);
   if (!opened) return opened.status();
+  if (!options.gt_poses && !options.gt_map) return RunFull(options, *opened, ctx);
+  Expected<pipeline::OdometryConfig> config = ResolveOdometryConfig(options.config);
+  if (!config) return config.status();
   const io::SequenceDescription* d = &opened->description;
   const geometry::StereoRig& rig = opened->calibration.rig;
   io::SequenceReader* reader = opened->reader.get();
@@ -225,12 +283,15 @@ Status Run(const RunOptions& options, Context& ctx) {
 void RegisterRun(CLI::App& app, Context& ctx) {
   auto options = std::make_shared<RunOptions>();
   CLI::App* sub = app.add_subcommand(
-      "run", "Run on a sequence (today: mapping with ground-truth poses, --gt-poses)");
+      "run", "Run the odometry on a sequence (or mapping only: --gt-poses, tracking only: --gt-map)");
   sub->add_option("sequence", options->sequence, "sequence.yaml, DSEC folder or bag")->required();
   sub->add_option("--out", options->out_dir, "Output folder")->required();
   sub->add_option("--calib", options->calibration, "Calibration, if the sequence names none");
   sub->add_flag("--gt-poses", options->gt_poses,
                 "Mapping only, with the sequence's ground-truth poses instead of tracking");
+  sub->add_flag("--esvo", options->esvo,
+                "ESVO-like mode: newest-event selection of 10k points, static stereo only, no "
+                "IMU prior");
   sub->add_flag("--gt-map", options->gt_map,
                 "Tracking only, against maps built from the sequence's ground-truth depth");
   sub->add_option("--start", options->start_s, "Seconds to skip")->check(CLI::NonNegativeNumber);
@@ -240,11 +301,10 @@ void RegisterRun(CLI::App& app, Context& ctx) {
   AddConfigOptions(*sub, &options->config);
   sub->callback([&ctx, options] {
     ctx.action = [&ctx, options] {
-      if (!options->gt_poses && !options->gt_map) {
-        ctx.err << "aavio run: the full odometry (tracking) is not built yet (issues #7, #8); "
-                   "`aavio run SEQUENCE --gt-poses --out DIR` runs mapping with ground-truth "
-                   "poses, `--gt-map` tracking against ground-truth maps\n";
-        return static_cast<int>(kExitNotImplemented);
+      if (options->gt_poses && options->gt_map) {
+        ctx.err << "aavio run: --gt-poses (mapping only) and --gt-map (tracking only) exclude "
+                   "each other; give neither for the full odometry\n";
+        return static_cast<int>(kExitUsage);
       }
       const Status status = Run(*options, ctx);
       if (status.ok()) return static_cast<int>(kExitOk);

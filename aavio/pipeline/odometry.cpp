@@ -1,0 +1,123 @@
+#include "aavio/pipeline/odometry.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace aavio::pipeline {
+namespace {
+
+tracking::Camera CameraOf(const geometry::StereoRig& rig) {
+  return {rig.width(), rig.height(), rig.focal_px(), rig.cx_left(), rig.cy()};
+}
+
+}  // namespace
+
+Odometry::Odometry(const geometry::StereoRig& rig, const OdometryConfig& config, TimeNs start_ns,
+                   const geometry::RigidTransform& T_world_start)
+    : config_(config),
+      rectification_(geometry::BuildStereoRectification(rig)),
+      stereo_(mapping::RectifiedStereo::FromRig(rig)),
+      builder_(rectification_, rig.width(), rig.height(),
+               {config.time_surface, config.adaptive_accumulation, config.edge_sampling,
+                static_cast<std::uint64_t>(config.pipeline.random_seed)},
+               start_ns),
+      tracker_(CameraOf(rig), config.tracking, config.imu,
+               rig.T_imu_rect_left().value_or(geometry::RigidTransform()).R,
+               static_cast<std::uint64_t>(config.pipeline.random_seed)),
+      mapper_(stereo_, rectification_.left.valid_mask, config.mapping),
+      tick_ns_(SecondsToNs(1.0 / config.time_surface.rate_hz)),
+      next_tick_ns_(start_ns + tick_ns_),
+      ticks_per_cycle_(std::max(
+          1, static_cast<int>(std::lround(config.time_surface.rate_hz / config.mapping.rate_hz)))) {
+  tracker_.Reset(start_ns, T_world_start);
+}
+
+Status Odometry::Process(std::span<const events::Event> left,
+                         std::span<const events::Event> right,
+                         std::span<const imu::ImuSample> imu, TimeNs t_end_ns) {
+  AAVIO_RETURN_IF_ERROR(builder_.AddEvents(events::Camera::kLeft, left));
+  AAVIO_RETURN_IF_ERROR(builder_.AddEvents(events::Camera::kRight, right));
+  imu_.insert(imu_.end(), imu.begin(), imu.end());
+  while (next_tick_ns_ < t_end_ns) {
+    AAVIO_RETURN_IF_ERROR(Tick(next_tick_ns_));
+    next_tick_ns_ += tick_ns_;
+  }
+  return Status::Ok();
+}
+
+void Odometry::PublishToTracking(const mapping::LocalMapPtr& map) {
+  if (!map) {
+    tracker_.SetMap(nullptr);
+    return;
+  }
+  auto tracking_map = std::make_shared<tracking::TrackingMap>();
+  tracking_map->T_world_ref = map->T_world_ref;
+  tracking_map->points_world = map->points_world;
+  tracker_.SetMap(std::move(tracking_map));
+}
+
+Status Odometry::Tick(TimeNs t_ns) {
+  auto obs = std::make_shared<events::Observation>();
+  AAVIO_RETURN_IF_ERROR(builder_.Build(t_ns, obs.get()));
+  ++ticks_;
+  OdometryTick tick;
+  tick.t_ns = t_ns;
+  tick.representation = obs->timings;
+
+  // The IMU samples around (previous tick, t]: keep one at or before the previous tick.
+  while (imu_.size() > 2 && imu_[1].t_ns <= t_ns - tick_ns_)
+    imu_.pop_front();
+  const std::vector<imu::ImuSample> window(imu_.begin(), imu_.end());
+  const tracking::TrackingResult tracked =
+      tracker_.Track(*obs, rectification_.left.valid_mask, window);
+  tick.T_world_cam = tracked.T_world_cur;
+  tick.status = tracked.status;
+  tick.registration_iterations = tracked.registration.iterations;
+  tick.tracking_ms = tracked.prediction_ms + tracked.registration_ms;
+  tick.gyro_bias = tracker_.gyro_bias();
+  const mapping::PosedObservation now{obs, tracked.T_world_cur};
+
+  if (!mapper_.initialized()) {
+    // Bootstrap (SGM) on this tick at the current pose; too few points: try the next tick.
+    const Status init = mapper_.Initialize(now);
+    if (!init.ok() && init.code() != StatusCode::kFailedPrecondition) return init;
+    if (init.ok()) {
+      tick.mapped = tick.bootstrap = true;
+      tick.map = mapper_.local_map();
+      PublishToTracking(tick.map);
+      lost_ticks_ = 0;
+    }
+  } else if (tracked.status == tracking::TrackingStatus::kOk) {
+    lost_ticks_ = 0;
+    if (ticks_ % ticks_per_cycle_ == 0) {
+      const mapping::PosedObservation* partner = mapping::FindTemporalPartner(
+          history_, tracked.T_world_cur, config_.mapping.temporal_stereo.min_translation_m);
+      AAVIO_RETURN_IF_ERROR(mapper_.Update(now, partner, &tick.mapping));
+      tick.mapped = true;
+      tick.map = mapper_.local_map();
+      PublishToTracking(tick.map);
+    }
+  } else if (++lost_ticks_ >= config_.pipeline.max_lost_ticks) {
+    // Lost for too long: forget the map; the next ticks bootstrap at the held pose.
+    mapper_.Reset();
+    PublishToTracking(nullptr);
+    tracker_.Reset(t_ns, tracked.T_world_cur);
+    history_.clear();
+    tick.reinitialised = true;
+    lost_ticks_ = 0;
+  }
+
+  // Keep this tick's AA map and tracked pose for later temporal partners.
+  if (tracked.status == tracking::TrackingStatus::kOk || tick.bootstrap) {
+    auto light = std::make_shared<events::Observation>();
+    light->t_ns = obs->t_ns;
+    light->aa_map = obs->aa_map;
+    history_.push_back({std::move(light), tracked.T_world_cur});
+    if (static_cast<int>(history_.size()) > config_.mapping.temporal_stereo.history_length)
+      history_.erase(history_.begin());
+  }
+  if (on_tick) on_tick(tick);
+  return Status::Ok();
+}
+
+}  // namespace aavio::pipeline

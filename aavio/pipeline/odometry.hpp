@@ -1,0 +1,77 @@
+#pragma once
+/// The odometry front-end (algorithm.md §6, design.md §1): events and IMU in; a pose every tick,
+/// a local map every mapping cycle, and their timings out. Synchronous and driven by data time
+/// only — the same input and seed give the same output, bit for bit, whatever the machine load.
+///
+/// At every tick (time_surface.rate_hz): build the Observation; track it against the newest local
+/// map (gyroscope or constant-velocity prediction, time-surface registration). Every
+/// rate_hz/mapping.rate_hz ticks, map on that same observation at its tracked pose (static +
+/// temporal stereo, fusion) and hand the new map to tracking — the reference's chain, where
+/// mapping uses the newest observation with a known pose, without its wall-clock waits.
+/// Before the first map, mapping bootstraps with SGM at the current pose (the start pose, turned
+/// by the gyroscope). After `pipeline.max_lost_ticks` lost ticks in a row, mapping is reset and
+/// bootstraps again at the held pose (the last good pose carried forward by the gyroscope),
+/// never back at the origin.
+
+#include <deque>
+#include <functional>
+#include <span>
+#include <vector>
+
+#include "aavio/events/representation_builder.hpp"
+#include "aavio/geometry/rectification.hpp"
+#include "aavio/mapping/mapper.hpp"
+#include "aavio/pipeline/odometry_config.hpp"
+#include "aavio/tracking/tracker.hpp"
+
+namespace aavio::pipeline {
+
+/// What one tick produced.
+struct OdometryTick {
+  TimeNs t_ns = 0;
+  geometry::RigidTransform T_world_cam;  ///< rectified left camera
+  tracking::TrackingStatus status = tracking::TrackingStatus::kNoMap;
+  int registration_iterations = 0;
+  double tracking_ms = 0.0;
+  events::RepresentationTimings representation;
+  bool mapped = false;       ///< a mapping cycle ran on this tick
+  bool bootstrap = false;    ///< ... and it was an SGM (re-)initialisation that succeeded
+  bool reinitialised = false;  ///< tracking was lost too long: mapping was reset here
+  mapping::MappingCycleReport mapping;  ///< of the cycle, if one ran (not for bootstraps)
+  mapping::LocalMapPtr map;             ///< the map published on this tick, if any
+  Eigen::Vector3d gyro_bias = Eigen::Vector3d::Zero();
+};
+
+class Odometry {
+ public:
+  /// `T_world_start`: the pose at `start_ns` (identity: the world is the first camera frame).
+  Odometry(const geometry::StereoRig& rig, const OdometryConfig& config, TimeNs start_ns,
+           const geometry::RigidTransform& T_world_start = {});
+
+  /// Adds both cameras' events and the IMU samples of [.., t_end_ns) (each time-ordered) and runs
+  /// every tick due by then; each goes to `on_tick`.
+  Status Process(std::span<const events::Event> left, std::span<const events::Event> right,
+                 std::span<const imu::ImuSample> imu, TimeNs t_end_ns);
+
+  std::function<void(const OdometryTick&)> on_tick;
+  std::int64_t ticks() const { return ticks_; }
+
+ private:
+  Status Tick(TimeNs t_ns);
+  void PublishToTracking(const mapping::LocalMapPtr& map);
+
+  OdometryConfig config_;
+  geometry::StereoRectification rectification_;
+  mapping::RectifiedStereo stereo_;
+  events::RepresentationBuilder builder_;
+  tracking::Tracker tracker_;
+  mapping::Mapper mapper_;
+  std::vector<mapping::PosedObservation> history_;  // AA maps and tracked poses, oldest first
+  std::deque<imu::ImuSample> imu_;
+  TimeNs tick_ns_, next_tick_ns_;
+  int ticks_per_cycle_;
+  std::int64_t ticks_ = 0;
+  int lost_ticks_ = 0;
+};
+
+}  // namespace aavio::pipeline

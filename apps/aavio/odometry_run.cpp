@@ -1,0 +1,280 @@
+#include "odometry_run.hpp"
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "aavio/common/format.hpp"
+#include "aavio/io/config_yaml.hpp"
+#include "aavio/io/trajectory_io.hpp"
+#include "aavio/mapping/global_cloud.hpp"
+#include "aavio/pipeline/odometry.hpp"
+#include "aavio/pipeline/stage_timings.hpp"
+#include "config_resolution.hpp"
+
+namespace aavio::cli {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+// Resident set size now and at its peak [MB] (Linux /proc; 0 elsewhere).
+std::pair<double, double> MemoryMb() {
+  std::ifstream in("/proc/self/status");
+  std::string key;
+  double rss = 0.0, peak = 0.0, kb = 0.0;
+  while (in >> key) {
+    if (key == "VmRSS:" && in >> kb) rss = kb / 1024.0;
+    if (key == "VmHWM:" && in >> kb) peak = kb / 1024.0;
+  }
+  return {rss, peak};
+}
+
+const char* StatusName(tracking::TrackingStatus s) {
+  switch (s) {
+    case tracking::TrackingStatus::kOk: return "ok";
+    case tracking::TrackingStatus::kLost: return "lost";
+    case tracking::TrackingStatus::kNoMap: return "no_map";
+  }
+  return "?";
+}
+
+// The local map's points coloured by inverse depth (jet: red near, blue far, the paper's
+// figures' convention) over the image, in the [inv_depth_min, inv_depth_max] range.
+cv::Mat InverseDepthImage(const mapping::LocalMap& map, int width, int height, double rho_min,
+                          double rho_max) {
+  cv::Mat level(1, 256, CV_8UC1);
+  for (int i = 0; i < 256; ++i)
+    level.at<std::uint8_t>(0, i) = static_cast<std::uint8_t>(i);
+  cv::Mat jet;
+  cv::applyColorMap(level, jet, cv::COLORMAP_JET);
+  cv::Mat image(height, width, CV_8UC3, cv::Scalar(0, 0, 0));
+  for (const mapping::DepthPoint& p : map.points) {
+    const double x = std::clamp((p.rho - rho_min) / (rho_max - rho_min), 0.0, 1.0);
+    const cv::Vec3b c = jet.at<cv::Vec3b>(0, static_cast<int>(std::lround(255.0 * x)));
+    cv::circle(image, {static_cast<int>(std::lround(p.u)), static_cast<int>(std::lround(p.v))}, 1,
+               cv::Scalar(c[0], c[1], c[2]), cv::FILLED);
+  }
+  return image;
+}
+
+Status WritePly(const std::string& path, const mapping::GlobalCloud& cloud, double rho_min,
+                double rho_max) {
+  std::ofstream out(path, std::ios::binary);
+  if (!out) return IoError(path + ": cannot write");
+  out << "ply\nformat binary_little_endian 1.0\ncomment aavio global map (world frame, metres)\n"
+      << "element vertex " << cloud.points().size()
+      << "\nproperty float x\nproperty float y\nproperty float z\n"
+      << "property uchar red\nproperty uchar green\nproperty uchar blue\nend_header\n";
+  cv::Mat level(1, 256, CV_8UC1);
+  for (int i = 0; i < 256; ++i)
+    level.at<std::uint8_t>(0, i) = static_cast<std::uint8_t>(i);
+  cv::Mat jet;
+  cv::applyColorMap(level, jet, cv::COLORMAP_JET);
+  for (std::size_t i = 0; i < cloud.points().size(); ++i) {
+    const Eigen::Vector3f& p = cloud.points()[i];
+    out.write(reinterpret_cast<const char*>(p.data()), 3 * sizeof(float));
+    const double x =
+        std::clamp((static_cast<double>(cloud.inv_depth()[i]) - rho_min) / (rho_max - rho_min), 0.0, 1.0);
+    const cv::Vec3b c = jet.at<cv::Vec3b>(0, static_cast<int>(std::lround(255.0 * x)));
+    const char rgb[3] = {static_cast<char>(c[2]), static_cast<char>(c[1]), static_cast<char>(c[0])};
+    out.write(rgb, 3);
+  }
+  return out ? Status::Ok() : IoError(path + ": write failed");
+}
+
+nlohmann::json AccuracyJson(const eval::TrajectoryError& e) {
+  return {{"alignment", "se3"},
+          {"pairs", e.pairs},
+          {"path_length_m", e.path_length_m},
+          {"ate_rmse_m", e.ate_rmse_m},
+          {"ate_mean_m", e.ate_mean_m},
+          {"ate_median_m", e.ate_median_m},
+          {"ate_max_m", e.ate_max_m},
+          {"ate_percent_of_path", e.path_length_m > 0 ? 100.0 * e.ate_rmse_m / e.path_length_m : 0.0},
+          {"ate_rotation_rmse_deg", e.ate_rotation_rmse_deg},
+          {"rpe_step_s", e.rpe_step_s},
+          {"rpe_translation_rmse_m", e.rpe_translation_rmse_m},
+          {"rpe_rotation_rmse_deg", e.rpe_rotation_rmse_deg}};
+}
+
+}  // namespace
+
+Expected<OdometryRunResult> RunOdometry(const OdometryRunRequest& request, Context& ctx) {
+  const auto wall_start = Clock::now();
+  OpenedSequence& s = *request.sequence;
+  const pipeline::OdometryConfig& config = *request.config;
+  const geometry::StereoRig& rig = s.calibration.rig;
+  std::error_code ec;
+  fs::create_directories(fs::path(request.out_dir) / "inverse_depth", ec);
+  if (ec) return IoError(request.out_dir + ": cannot create the folder (" + ec.message() + ")");
+
+  pipeline::Odometry odometry(rig, config, request.begin_ns);
+  std::vector<geometry::StampedPose> trajectory;
+  pipeline::StageTimings timings;
+  std::map<std::string, int> status_counts;
+  int bootstraps = 0, reinitialisations = 0, cycles = 0;
+  std::ofstream csv(fs::path(request.out_dir) / "timings.csv");
+  csv << "t_s,status,time_surface_ms,aa_ms,sampling_ms,tracking_ms,iterations,mapping_ms,"
+         "map_points\n";
+  const int depth_image_every = std::max(1, static_cast<int>(std::lround(config.mapping.rate_hz)));
+  mapping::GlobalCloud cloud(0.01 / std::max(config.mapping.inv_depth_min, 0.01) * 0.5);
+  nlohmann::json rss_over_time = nlohmann::json::array();
+  const double max_depth_m = 1.0 / config.mapping.inv_depth_min;
+  Status write_status = Status::Ok();
+  odometry.on_tick = [&](const pipeline::OdometryTick& t) {
+    trajectory.push_back({t.t_ns, t.T_world_cam});
+    status_counts[StatusName(t.status)]++;
+    timings.Add("time_surface", t.representation.time_surface_ms);
+    timings.Add("aa_map", t.representation.aa_ms);
+    timings.Add("sampling", t.representation.sampling_ms);
+    if (t.status != tracking::TrackingStatus::kNoMap)
+      timings.Add("tracking", t.tracking_ms, t.registration_iterations);
+    bootstraps += t.bootstrap;
+    reinitialisations += t.reinitialised;
+    double mapping_ms = 0.0;
+    if (t.mapped && !t.bootstrap) {
+      const mapping::MappingCycleReport& r = t.mapping;
+      timings.Add("matching", r.matching_ms, r.static_candidates + r.temporal_candidates);
+      timings.Add("depth_refinement", r.refinement_ms, r.static_matches + r.temporal_matches);
+      timings.Add("fusion", r.fusion_ms, r.map_points);
+      timings.Add("mapping_total", r.total_ms, r.samples);
+      mapping_ms = r.total_ms;
+    }
+    if (t.map) {
+      cloud.Add(*t.map, std::min(max_depth_m, 50.0));
+      if (cycles++ % depth_image_every == 0 && write_status.ok()) {
+        const std::string name = StrFormat("inverse_depth/%012.6f.png", NsToSeconds(t.t_ns));
+        const cv::Mat image = InverseDepthImage(*t.map, rig.width(), rig.height(),
+                                                config.mapping.inv_depth_min,
+                                                config.mapping.inv_depth_max);
+        if (!cv::imwrite((fs::path(request.out_dir) / name).string(), image))
+          write_status = IoError(request.out_dir + "/" + name + ": cannot write");
+      }
+    }
+    csv << StrFormat("%.6f,%s,%.4f,%.4f,%.4f,%.4f,%d,%.4f,%zu\n", NsToSeconds(t.t_ns),
+                     StatusName(t.status), t.representation.time_surface_ms,
+                     t.representation.aa_ms, t.representation.sampling_ms, t.tracking_ms,
+                     t.registration_iterations, mapping_ms, t.map ? t.map->points.size() : 0);
+    if (odometry.ticks() % 100 == 0) {
+      rss_over_time.push_back({NsToSeconds(t.t_ns - request.begin_ns), MemoryMb().first});
+    }
+  };
+
+  std::int64_t events = 0;
+  io::SensorPacket packet;
+  bool interrupted = false;
+  TimeNs last_t = request.begin_ns;
+  while (true) {
+    if (request.interrupted && request.interrupted->load()) {
+      interrupted = true;
+      break;
+    }
+    Expected<bool> more = s.reader->Next(&packet);
+    if (!more) return more.status();
+    if (!*more || packet.t_begin_ns >= request.end_ns) break;
+    events += static_cast<std::int64_t>(packet.left.size() + packet.right.size());
+    AAVIO_RETURN_IF_ERROR(odometry.Process(packet.left, packet.right, packet.imu,
+                                           std::min(packet.t_end_ns, request.end_ns)));
+    AAVIO_RETURN_IF_ERROR(write_status);
+    last_t = std::min(packet.t_end_ns, request.end_ns);
+    if (request.progress && odometry.ticks() % 50 == 0) {
+      const double done = NsToSeconds(last_t - request.begin_ns);
+      const double wall = std::chrono::duration<double>(Clock::now() - wall_start).count();
+      ctx.err << StrFormat("\rodometry %.1f / %.1f s of data, %.2fx real time, tracking ok %d, lost %d   ",
+                           done, NsToSeconds(request.end_ns - request.begin_ns),
+                           wall > 0 ? done / wall : 0.0, status_counts["ok"], status_counts["lost"])
+              << std::flush;
+    }
+  }
+  if (request.progress) ctx.err << "\r" << std::string(90, ' ') << "\r";
+  csv.close();
+
+  OdometryRunResult result;
+  result.interrupted = interrupted;
+  result.wall_s = std::chrono::duration<double>(Clock::now() - wall_start).count();
+  result.data_s = NsToSeconds(last_t - request.begin_ns);
+  result.poses = trajectory.size();
+  const fs::path out(request.out_dir);
+  AAVIO_RETURN_IF_ERROR(
+      io::WriteTumTrajectory((out / "stamped_traj_estimate.txt").string(), trajectory));
+  AAVIO_RETURN_IF_ERROR(io::WriteTextFile(
+      (out / "config.yaml").string(),
+      io::FormatConfigYaml(FlattenConfig(config), "aavio effective configuration (" +
+                                                      VersionString() + ")\nfrom: " +
+                                                      request.config_origin)));
+  AAVIO_RETURN_IF_ERROR(WritePly((out / "map.ply").string(), cloud, config.mapping.inv_depth_min,
+                                 config.mapping.inv_depth_max));
+
+  // Accuracy against the sequence's ground truth, if it has one in TUM text.
+  const io::SequenceDescription& d = s.description;
+  if (d.gt_trajectory && d.gt_trajectory->format == io::SourceFormat::kText && !trajectory.empty()) {
+    Expected<std::vector<geometry::StampedPose>> gt = io::ReadTumTrajectory(d.gt_trajectory->path);
+    if (!gt) return gt.status();
+    Expected<std::vector<eval::PosePair>> pairs = eval::Associate(trajectory, *gt);
+    if (!pairs) return pairs.status().WithContext(d.gt_trajectory->path);
+    result.accuracy = eval::EvaluateTrajectory(*pairs, eval::Alignment::kSe3, 0.1);
+  }
+
+  nlohmann::json summary;
+  summary["mode"] = request.mode;
+  summary["version"] = VersionString();
+  summary["sequence"] = d.origin;
+  summary["interrupted"] = interrupted;
+  summary["data_duration_s"] = result.data_s;
+  summary["wall_s"] = result.wall_s;
+  summary["real_time_factor"] = result.wall_s > 0.0 ? result.data_s / result.wall_s : 0.0;
+  summary["events"] = events;
+  summary["poses"] = trajectory.size();
+  summary["tracking_status"] = status_counts;
+  summary["bootstraps"] = bootstraps;
+  summary["reinitialisations"] = reinitialisations;
+  summary["map_points_global"] = cloud.points().size();
+  const auto [rss_mb, peak_mb] = MemoryMb();
+  summary["memory"] = {{"peak_rss_mb", peak_mb}, {"final_rss_mb", rss_mb},
+                       {"rss_mb_over_time", rss_over_time}};
+  for (const auto& [stage, st] : timings.Summary()) {
+    summary["stages"][stage] = {{"median_ms", st.median_ms},
+                                {"p95_ms", st.p95_ms},
+                                {"calls", st.calls},
+                                {"median_items", st.median_items}};
+  }
+  if (result.accuracy) summary["accuracy"] = AccuracyJson(*result.accuracy);
+  AAVIO_RETURN_IF_ERROR(io::WriteTextFile((out / "summary.json").string(), summary.dump(2) + "\n"));
+
+  // The end-of-run summary.
+  ctx.out << StrFormat("%s%.2f s of data (%lld events) in %.1f s: real-time factor %.2f\n",
+                       interrupted ? "interrupted: " : "", result.data_s,
+                       static_cast<long long>(events), result.wall_s,
+                       result.wall_s > 0 ? result.data_s / result.wall_s : 0.0);
+  ctx.out << StrFormat("poses %zu: tracking ok %d, lost %d, no map %d; %d bootstrap(s), %d re-initialisation(s)\n",
+                       trajectory.size(), status_counts["ok"], status_counts["lost"],
+                       status_counts["no_map"], bootstraps, reinitialisations);
+  std::string stages = "median per stage [ms]:";
+  for (const char* stage : {"time_surface", "aa_map", "sampling", "tracking", "matching",
+                            "depth_refinement", "fusion", "mapping_total"}) {
+    const auto all = timings.Summary();
+    if (auto it = all.find(stage); it != all.end())
+      stages += StrFormat(" %s %.2f", stage, it->second.median_ms);
+  }
+  ctx.out << stages << "\n";
+  if (result.accuracy) {
+    const eval::TrajectoryError& e = *result.accuracy;
+    ctx.out << StrFormat(
+        "accuracy vs ground truth (%zu poses, se3-aligned, path %.2f m): ATE RMSE %.4f m "
+        "(%.2f %% of the path), RPE over %.1f s: %.4f m, %.3f deg\n",
+        e.pairs, e.path_length_m, e.ate_rmse_m,
+        e.path_length_m > 0 ? 100.0 * e.ate_rmse_m / e.path_length_m : 0.0, e.rpe_step_s,
+        e.rpe_translation_rmse_m, e.rpe_rotation_rmse_deg);
+  }
+  ctx.out << "wrote " << request.out_dir
+          << "/{stamped_traj_estimate.txt,summary.json,timings.csv,config.yaml,map.ply,"
+             "inverse_depth/}\n";
+  return result;
+}
+
+}  // namespace aavio::cli
