@@ -43,44 +43,50 @@ const char* StatusName(tracking::TrackingStatus s) {
   return "?";
 }
 
-// The local map's points coloured by inverse depth (jet: red near, blue far, the paper's
-// figures' convention) over the image, in the [inv_depth_min, inv_depth_max] range.
-cv::Mat InverseDepthImage(const mapping::LocalMap& map, int width, int height, double rho_min,
-                          double rho_max) {
-  cv::Mat level(1, 256, CV_8UC1);
-  for (int i = 0; i < 256; ++i)
-    level.at<std::uint8_t>(0, i) = static_cast<std::uint8_t>(i);
-  cv::Mat jet;
-  cv::applyColorMap(level, jet, cv::COLORMAP_JET);
+// Inverse depth as a colour (jet: red near, blue far, the paper's figures' convention) over the
+// [rho_min, rho_max] range; BGR.
+class InverseDepthColours {
+ public:
+  InverseDepthColours(double rho_min, double rho_max) : rho_min_(rho_min), rho_max_(rho_max) {
+    cv::Mat level(1, 256, CV_8UC1);
+    for (int i = 0; i < 256; ++i)
+      level.at<std::uint8_t>(0, i) = static_cast<std::uint8_t>(i);
+    cv::applyColorMap(level, jet_, cv::COLORMAP_JET);
+  }
+  cv::Vec3b operator()(double rho) const {
+    const double x = std::clamp((rho - rho_min_) / (rho_max_ - rho_min_), 0.0, 1.0);
+    return jet_.at<cv::Vec3b>(0, static_cast<int>(std::lround(255.0 * x)));
+  }
+
+ private:
+  double rho_min_, rho_max_;
+  cv::Mat jet_;
+};
+
+// The local map's points, coloured by inverse depth, on black.
+cv::Mat InverseDepthImage(const mapping::LocalMap& map, int width, int height,
+                          const InverseDepthColours& colours) {
   cv::Mat image(height, width, CV_8UC3, cv::Scalar(0, 0, 0));
   for (const mapping::DepthPoint& p : map.points) {
-    const double x = std::clamp((p.rho - rho_min) / (rho_max - rho_min), 0.0, 1.0);
-    const cv::Vec3b c = jet.at<cv::Vec3b>(0, static_cast<int>(std::lround(255.0 * x)));
+    const cv::Vec3b c = colours(p.rho);
     cv::circle(image, {static_cast<int>(std::lround(p.u)), static_cast<int>(std::lround(p.v))}, 1,
                cv::Scalar(c[0], c[1], c[2]), cv::FILLED);
   }
   return image;
 }
 
-Status WritePly(const std::string& path, const mapping::GlobalCloud& cloud, double rho_min,
-                double rho_max) {
+Status WritePly(const std::string& path, const mapping::GlobalCloud& cloud,
+                const InverseDepthColours& colours) {
   std::ofstream out(path, std::ios::binary);
   if (!out) return IoError(path + ": cannot write");
   out << "ply\nformat binary_little_endian 1.0\ncomment aavio global map (world frame, metres)\n"
       << "element vertex " << cloud.points().size()
       << "\nproperty float x\nproperty float y\nproperty float z\n"
       << "property uchar red\nproperty uchar green\nproperty uchar blue\nend_header\n";
-  cv::Mat level(1, 256, CV_8UC1);
-  for (int i = 0; i < 256; ++i)
-    level.at<std::uint8_t>(0, i) = static_cast<std::uint8_t>(i);
-  cv::Mat jet;
-  cv::applyColorMap(level, jet, cv::COLORMAP_JET);
   for (std::size_t i = 0; i < cloud.points().size(); ++i) {
     const Eigen::Vector3f& p = cloud.points()[i];
     out.write(reinterpret_cast<const char*>(p.data()), 3 * sizeof(float));
-    const double x =
-        std::clamp((static_cast<double>(cloud.inv_depth()[i]) - rho_min) / (rho_max - rho_min), 0.0, 1.0);
-    const cv::Vec3b c = jet.at<cv::Vec3b>(0, static_cast<int>(std::lround(255.0 * x)));
+    const cv::Vec3b c = colours(static_cast<double>(cloud.inv_depth()[i]));
     const char rgb[3] = {static_cast<char>(c[2]), static_cast<char>(c[1]), static_cast<char>(c[0])};
     out.write(rgb, 3);
   }
@@ -122,9 +128,12 @@ Expected<OdometryRunResult> RunOdometry(const OdometryRunRequest& request, Conte
   csv << "t_s,status,time_surface_ms,aa_ms,sampling_ms,tracking_ms,iterations,mapping_ms,"
          "map_points\n";
   const int depth_image_every = std::max(1, static_cast<int>(std::lround(config.mapping.rate_hz)));
-  mapping::GlobalCloud cloud(0.01 / std::max(config.mapping.inv_depth_min, 0.01) * 0.5);
+  // map.ply: points up to the far end of the depth range (at most 50 m) on voxels of 0.5 % of it
+  // (rpg 0.5–5 m: 2.5 cm; DSEC: 25 cm).
+  const double cloud_depth_m = std::min(1.0 / config.mapping.inv_depth_min, 50.0);
+  mapping::GlobalCloud cloud(0.005 * cloud_depth_m);
+  const InverseDepthColours colours(config.mapping.inv_depth_min, config.mapping.inv_depth_max);
   nlohmann::json rss_over_time = nlohmann::json::array();
-  const double max_depth_m = 1.0 / config.mapping.inv_depth_min;
   Status write_status = Status::Ok();
   odometry.on_tick = [&](const pipeline::OdometryTick& t) {
     trajectory.push_back({t.t_ns, t.T_world_cam});
@@ -146,12 +155,10 @@ Expected<OdometryRunResult> RunOdometry(const OdometryRunRequest& request, Conte
       mapping_ms = r.total_ms;
     }
     if (t.map) {
-      cloud.Add(*t.map, std::min(max_depth_m, 50.0));
+      cloud.Add(*t.map, cloud_depth_m);
       if (cycles++ % depth_image_every == 0 && write_status.ok()) {
         const std::string name = StrFormat("inverse_depth/%012.6f.png", NsToSeconds(t.t_ns));
-        const cv::Mat image = InverseDepthImage(*t.map, rig.width(), rig.height(),
-                                                config.mapping.inv_depth_min,
-                                                config.mapping.inv_depth_max);
+        const cv::Mat image = InverseDepthImage(*t.map, rig.width(), rig.height(), colours);
         if (!cv::imwrite((fs::path(request.out_dir) / name).string(), image))
           write_status = IoError(request.out_dir + "/" + name + ": cannot write");
       }
@@ -207,8 +214,7 @@ Expected<OdometryRunResult> RunOdometry(const OdometryRunRequest& request, Conte
       io::FormatConfigYaml(FlattenConfig(config), "aavio effective configuration (" +
                                                       VersionString() + ")\nfrom: " +
                                                       request.config_origin)));
-  AAVIO_RETURN_IF_ERROR(WritePly((out / "map.ply").string(), cloud, config.mapping.inv_depth_min,
-                                 config.mapping.inv_depth_max));
+  AAVIO_RETURN_IF_ERROR(WritePly((out / "map.ply").string(), cloud, colours));
 
   // Accuracy against the sequence's ground truth, if it has one in TUM text.
   const io::SequenceDescription& d = s.description;
