@@ -27,7 +27,7 @@ packages=(
   libeigen3-dev libopencv-dev libyaml-cpp-dev libcli11-dev nlohmann-json3-dev libtbb-dev
   libhdf5-dev hdf5-filter-plugin-blosc-serial hdf5-tools liblz4-dev libbz2-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  python3 python3-yaml python3-numpy python3-h5py python3-hdf5plugin
+  python3 python3-yaml python3-numpy python3-h5py python3-hdf5plugin python3-matplotlib
   python3-rosbag python3-genpy python3-genmsg
 )
 

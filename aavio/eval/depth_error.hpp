@@ -42,6 +42,9 @@ class DepthErrorAccumulator {
            const cv::Mat& gt_edges, const geometry::RigidTransform& T_world_cam);
 
   DepthErrorSummary Summary() const;
+  /// |Δz| [m] and |Δz| / z_gt of every scored point, in the order added (for histograms).
+  const std::vector<double>& errors_m() const { return errors_; }
+  const std::vector<double>& relative_errors() const { return relative_; }
 
  private:
   PinholeCamera camera_;

@@ -1,6 +1,5 @@
 #include "aavio/eval/trajectory_error.hpp"
 
-#include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
 
@@ -23,15 +22,33 @@ double RotationDeg(const Eigen::Matrix3d& R) { return geometry::LogSO3(R).norm()
 Expected<std::vector<PosePair>> Associate(const std::vector<geometry::StampedPose>& estimate,
                                           const std::vector<geometry::StampedPose>& ground_truth,
                                           TimeNs max_dt_ns) {
-  std::vector<PosePair> pairs;
-  std::size_t j = 0;
-  for (const geometry::StampedPose& e : estimate) {
-    while (j + 1 < ground_truth.size() &&
-           std::llabs(ground_truth[j + 1].t_ns - e.t_ns) <= std::llabs(ground_truth[j].t_ns - e.t_ns))
-      ++j;
-    if (ground_truth.empty() || std::llabs(ground_truth[j].t_ns - e.t_ns) > max_dt_ns) continue;
-    pairs.push_back({e.t_ns, e.T_world_body, ground_truth[j].T_world_body});
+  struct Candidate {
+    TimeNs dt;
+    std::size_t e, g;
+  };
+  std::vector<Candidate> candidates;
+  std::size_t first = 0;
+  for (std::size_t e = 0; e < estimate.size(); ++e) {
+    while (first < ground_truth.size() && ground_truth[first].t_ns < estimate[e].t_ns - max_dt_ns)
+      ++first;
+    for (std::size_t g = first;
+         g < ground_truth.size() && ground_truth[g].t_ns <= estimate[e].t_ns + max_dt_ns; ++g)
+      candidates.push_back({std::llabs(ground_truth[g].t_ns - estimate[e].t_ns), e, g});
   }
+  std::stable_sort(candidates.begin(), candidates.end(),
+                   [](const Candidate& a, const Candidate& b) { return a.dt < b.dt; });
+  std::vector<char> used_e(estimate.size(), 0), used_g(ground_truth.size(), 0);
+  std::vector<std::pair<std::size_t, std::size_t>> matches;
+  for (const Candidate& c : candidates) {
+    if (used_e[c.e] || used_g[c.g]) continue;
+    used_e[c.e] = used_g[c.g] = 1;
+    matches.emplace_back(c.e, c.g);
+  }
+  std::sort(matches.begin(), matches.end());
+  std::vector<PosePair> pairs;
+  pairs.reserve(matches.size());
+  for (const auto& [e, g] : matches)
+    pairs.push_back({estimate[e].t_ns, estimate[e].T_world_body, ground_truth[g].T_world_body});
   if (pairs.empty()) {
     return InvalidArgument(
         "no estimated pose has a ground-truth pose within " +
@@ -41,40 +58,11 @@ Expected<std::vector<PosePair>> Associate(const std::vector<geometry::StampedPos
   return pairs;
 }
 
-Similarity Align(const std::vector<PosePair>& pairs, Alignment alignment) {
-  Similarity S;
-  if (alignment == Alignment::kNone || pairs.size() < 3) return S;
-  const double n = static_cast<double>(pairs.size());
-  Eigen::Vector3d mu_e = Eigen::Vector3d::Zero(), mu_g = Eigen::Vector3d::Zero();
-  for (const PosePair& p : pairs) {
-    mu_e += p.T_world_est.t;
-    mu_g += p.T_world_gt.t;
-  }
-  mu_e /= n;
-  mu_g /= n;
-  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-  double var_e = 0.0;
-  for (const PosePair& p : pairs) {
-    cov += (p.T_world_gt.t - mu_g) * (p.T_world_est.t - mu_e).transpose();
-    var_e += (p.T_world_est.t - mu_e).squaredNorm();
-  }
-  cov /= n;
-  var_e /= n;
-  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(cov, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  Eigen::Matrix3d D = Eigen::Matrix3d::Identity();
-  if ((svd.matrixU() * svd.matrixV().transpose()).determinant() < 0.0) D(2, 2) = -1.0;
-  S.R = svd.matrixU() * D * svd.matrixV().transpose();
-  if (alignment == Alignment::kSim3 && var_e > 0.0)
-    S.scale = (svd.singularValues().asDiagonal() * D).trace() / var_e;
-  S.t = mu_g - S.scale * (S.R * mu_e);
-  return S;
-}
-
 TrajectoryError EvaluateTrajectory(const std::vector<PosePair>& pairs, Alignment alignment,
-                                   double rpe_step_s) {
+                                   double rpe_step_s, int align_num_frames) {
   TrajectoryError e;
   e.pairs = pairs.size();
-  e.alignment = Align(pairs, alignment);
+  e.alignment = Align(pairs, alignment, align_num_frames);
   e.rpe_step_s = rpe_step_s;
   std::vector<double> ate, ate_rot;
   for (std::size_t i = 0; i < pairs.size(); ++i) {
@@ -83,6 +71,7 @@ TrajectoryError EvaluateTrajectory(const std::vector<PosePair>& pairs, Alignment
     ate_rot.push_back(RotationDeg(p.T_world_gt.R.transpose() * e.alignment.R * p.T_world_est.R));
     if (i > 0) e.path_length_m += (p.T_world_gt.t - pairs[i - 1].T_world_gt.t).norm();
   }
+  e.ate_per_pair_m = ate;
   if (!ate.empty()) {
     e.ate_rmse_m = Rms(ate);
     e.ate_rotation_rmse_deg = Rms(ate_rot);

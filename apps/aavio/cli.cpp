@@ -26,7 +26,8 @@ int RunCli(const std::vector<std::string>& args, std::ostream& out, std::ostream
   RegisterRepresentations(app, ctx);
   RegisterRun(app, ctx);
   RegisterDemo(app, ctx);
-  RegisterPlanned(app, ctx);
+  RegisterEval(app, ctx);
+  RegisterReport(app, ctx);
 
   std::vector<std::string> reversed(args.rbegin(), args.rend() - (args.empty() ? 0 : 1));
   try {

@@ -18,7 +18,6 @@ enum ExitCode : int {
   kExitOk = 0,
   kExitError = 1,           ///< bad input or a failed operation; the message says which
   kExitUsage = 2,           ///< wrong arguments
-  kExitNotImplemented = 3,  ///< a subcommand that is not built yet
 };
 
 /// What a subcommand's callback needs: where to print, and where to put the action to run once
@@ -36,7 +35,8 @@ void RegisterSimulate(CLI::App& app, Context& ctx);
 void RegisterRepresentations(CLI::App& app, Context& ctx);
 void RegisterRun(CLI::App& app, Context& ctx);
 void RegisterDemo(CLI::App& app, Context& ctx);
-void RegisterPlanned(CLI::App& app, Context& ctx);  // subcommands not built yet
+void RegisterEval(CLI::App& app, Context& ctx);
+void RegisterReport(CLI::App& app, Context& ctx);
 
 /// Runs `aavio` with the given arguments (argv[0] included) and returns the exit code.
 int RunCli(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);

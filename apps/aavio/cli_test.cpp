@@ -2,9 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "aavio/common/format.hpp"
 #include "tests/event_fixtures.hpp"
 #include "tests/fixtures/calibrations.hpp"
 #include "tests/test_utils.hpp"
@@ -55,14 +57,6 @@ TEST(Cli, UsageErrors) {
   EXPECT_NE(r.err.find("aavio --help"), std::string::npos);
   EXPECT_EQ(RunAavio({"info"}).code, kExitUsage);  // path is required
   EXPECT_EQ(RunAavio({}).code, kExitUsage);
-}
-
-TEST(Cli, PlannedCommandsSaySoAndFail) {
-  for (const char* command : {"eval", "report"}) {
-    Result r = RunAavio({command, "--preset", "mini"});
-    EXPECT_EQ(r.code, kExitNotImplemented) << command;
-    EXPECT_NE(r.err.find("not built yet"), std::string::npos) << command;
-  }
 }
 
 TEST(Cli, InfoDescribesACalibration) {
@@ -302,26 +296,105 @@ TEST(Cli, RunOdometryWritesItsOutputsAndIsDeterministic) {
   EXPECT_EQ(traj.find("nan"), std::string::npos);
   for (const char* name : {"summary.json", "timings.csv", "config.yaml", "map.ply"})
     EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(one) / name)) << name;
-  EXPECT_FALSE(std::filesystem::is_empty(std::filesystem::path(one) / "inverse_depth"));
+  for (const char* name : {"depth/timestamps.txt", "depth/disparity_000000.png",
+                           "depth/inverse_depth_000000.png"})
+    EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(one) / name)) << name;
   std::ifstream in(std::filesystem::path(one) / "summary.json");
   const nlohmann::json j = nlohmann::json::parse(in);
   EXPECT_EQ(j["mode"], "full");
   EXPECT_GE(j["poses"].get<int>(), 140);
-  EXPECT_GT(j["tracking_status"]["ok"].get<int>(), 0);
+  EXPECT_GT(j["status"]["ok"].get<int>(), 0);
   EXPECT_GE(j["bootstraps"].get<int>(), 1);
   for (const char* stage : {"time_surface", "tracking", "matching", "mapping_total"})
     EXPECT_TRUE(j["stages"].contains(stage)) << stage;
   EXPECT_GT(j["accuracy"]["pairs"].get<int>(), 100);
-  EXPECT_GT(j["memory"]["peak_rss_mb"].get<double>(), 0.0);
+  EXPECT_GT(j["peak_rss_mb"].get<double>(), 0.0);
+  EXPECT_GT(j["depth"]["points"].get<int>(), 0);
   // ESVO-like mode: its configuration is the one that ran.
   r = RunAavio({"run", seq, "--out", two, "--quiet", "--esvo"});
   ASSERT_EQ(r.code, kExitOk) << r.err;
   const std::string config = ReadAll(std::filesystem::path(two) / "config.yaml");
   EXPECT_NE(config.find("mode: newest_events"), std::string::npos);
   EXPECT_NE(config.find("use_gyro_prior: false"), std::string::npos);
+
+  // `aavio eval --run` recomputes what the run reported, and scores its depth maps.
+  r = RunAavio({"eval", "--run", one, "--json"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  const nlohmann::json e = nlohmann::json::parse(r.out);
+  for (const char* key : {"ate_rmse_m", "ate_mean_m", "ate_median_m", "ate_max_m", "pairs",
+                          "path_length_m", "align", "rpe_trans_pct", "rpe_rot_deg_per_m", "rpe"})
+    EXPECT_TRUE(e.contains(key)) << key;
+  // (the run's trajectory file holds 9 decimals)
+  EXPECT_NEAR(e["ate_rmse_m"].get<double>(), j["accuracy"]["ate_rmse_m"].get<double>(), 1e-7);
+  EXPECT_EQ(e["rpe"].size(), 5u);
+  EXPECT_DOUBLE_EQ(e["depth"]["relative"].get<double>(), j["depth"]["relative"].get<double>());
+  EXPECT_LT(e["depth"]["relative"].get<double>(), 0.5);
+  r = RunAavio({"eval", "--run", one});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  EXPECT_NE(r.out.find("rpg_trajectory_evaluation form"), std::string::npos) << r.out;
+
+  // `aavio report` of the two runs on one page: html with the plots embedded, non-empty PNGs.
+  const std::string html = (dir / "report" / "report.html").string();
+  r = RunAavio({"report", "--run", one, "--run", two, "--name", "full", "--name", "esvo", "--out",
+                html});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  const std::string page = ReadAll(html);
+  EXPECT_NE(page.find("data:image/png;base64,"), std::string::npos);
+  EXPECT_NE(page.find("esvo"), std::string::npos);
+  for (const char* png : {"trajectory.png", "errors_over_distance.png", "depth_error.png",
+                          "timing.png"}) {
+    const auto path = dir / "report" / "report_files" / png;
+    ASSERT_TRUE(std::filesystem::exists(path)) << png;
+    EXPECT_GT(std::filesystem::file_size(path), 5000u) << png;
+  }
   // Both isolation modes at once: a usage error.
   r = RunAavio({"run", seq, "--out", two, "--gt-map", "--gt-poses"});
   EXPECT_EQ(r.code, kExitUsage);
+}
+
+// `aavio eval --est --gt`: a rigidly moved copy has no error with se3 but has without alignment;
+// bad arguments and non-overlapping trajectories are clear errors.
+TEST(Cli, EvalComparesTrajectoryFiles) {
+  const auto dir = testing::ScratchDir();
+  std::string gt = "# timestamp tx ty tz qx qy qz qw\n", moved = gt, late = gt;
+  for (int i = 0; i < 200; ++i) {
+    const double t = 100.0 + 0.01 * i, s = 0.02 * i;
+    // moved = a yaw of 90 degrees and a shift: (x, y, z) -> (-y + 1, x - 2, z + 0.5)
+    const double x = std::cos(s), y = std::sin(1.5 * s), z = 0.1 * s;
+    gt += StrFormat("%.9f %.9f %.9f %.9f 0 0 0 1\n", t, x, y, z);
+    moved += StrFormat("%.9f %.9f %.9f %.9f 0 0 0.7071067811865476 0.7071067811865476\n", t,
+                       -y + 1.0, x - 2.0, z + 0.5);
+    late += StrFormat("%.9f %.9f %.9f %.9f 0 0 0 1\n", t + 50.0, x, y, z);
+  }
+  testing::WriteFile(dir / "gt.txt", gt);
+  testing::WriteFile(dir / "moved.txt", moved);
+  testing::WriteFile(dir / "late.txt", late);
+  const std::string g = (dir / "gt.txt").string(), m = (dir / "moved.txt").string();
+  for (const char* align : {"se3", "posyaw", "sim3"}) {
+    const Result r = RunAavio({"eval", "--est", m, "--gt", g, "--align", align, "--json"});
+    ASSERT_EQ(r.code, kExitOk) << r.err;
+    const nlohmann::json j = nlohmann::json::parse(r.out);
+    EXPECT_LT(j["ate_rmse_m"].get<double>(), 1e-6) << align;
+    EXPECT_LT(j["rpe_trans_pct"].get<double>(), 1e-4) << align;
+    EXPECT_EQ(j["pairs"].get<int>(), 200);
+  }
+  Result r = RunAavio({"eval", "--est", m, "--gt", g, "--align", "none", "--json"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  EXPECT_GT(nlohmann::json::parse(r.out)["ate_rmse_m"].get<double>(), 1.0);
+  r = RunAavio({"eval", "--est", m, "--gt", g, "--lengths", "0.5,1"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  EXPECT_NE(r.out.find("      0.50"), std::string::npos) << r.out;
+  r = RunAavio({"eval", "--est", m, "--gt", g, "--align", "affine"});
+  EXPECT_EQ(r.code, kExitError);
+  EXPECT_NE(r.err.find("posyaw"), std::string::npos) << r.err;
+  r = RunAavio({"eval", "--est", (dir / "late.txt").string(), "--gt", g});
+  EXPECT_EQ(r.code, kExitError);
+  EXPECT_NE(r.err.find("overlap"), std::string::npos) << r.err;
+  EXPECT_EQ(RunAavio({"eval", "--est", m}).code, kExitUsage);
+  EXPECT_EQ(RunAavio({"eval", "--est", m, "--gt", g, "--run", dir.string()}).code, kExitUsage);
+  r = RunAavio({"eval", "--run", dir.string()});
+  EXPECT_EQ(r.code, kExitError);
+  EXPECT_NE(r.err.find("summary.json"), std::string::npos) << r.err;
 }
 
 TEST(Cli, DemoSimulatesRunsAndReportsAccuracy) {

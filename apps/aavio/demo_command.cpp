@@ -39,9 +39,9 @@ int RunDemo(const DemoOptions& options, Context& ctx) {
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   ctx.out << StrFormat("demo done in %.1f s. Look at %s/stamped_traj_estimate.txt (TUM), "
-                       "summary.json, map.ply and inverse_depth/*.png; the ground truth is in "
+                       "summary.json, map.ply and depth/; `aavio report --run %s` draws it; the ground truth is in "
                        "%s/groundtruth.txt and %s/depth/.\n",
-                       wall, run.c_str(), sequence.c_str(), sequence.c_str());
+                       wall, run.c_str(), run.c_str(), sequence.c_str(), sequence.c_str());
   return kExitOk;
 }
 

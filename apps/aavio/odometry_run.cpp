@@ -12,9 +12,11 @@
 #include "aavio/io/config_yaml.hpp"
 #include "aavio/io/trajectory_io.hpp"
 #include "aavio/mapping/global_cloud.hpp"
+#include "aavio/mapping/rectified_stereo.hpp"
 #include "aavio/pipeline/odometry.hpp"
 #include "aavio/pipeline/stage_timings.hpp"
 #include "config_resolution.hpp"
+#include "run_evaluation.hpp"
 
 namespace aavio::cli {
 namespace {
@@ -75,6 +77,26 @@ cv::Mat InverseDepthImage(const mapping::LocalMap& map, int width, int height,
   return image;
 }
 
+// The local map as disparity_INDEX.png (DSEC's ground-truth format: 16-bit, disparity × 256,
+// 0 = none; 1/256 px steps, so 0.06 % of depth at 50 m on DSEC; a sparse map compresses to a few
+// kB where float TIFF takes 1.2 MB) and as inverse_depth_INDEX.png (colour).
+Status WriteDepthMaps(const fs::path& dir, const std::string& index, const mapping::LocalMap& map,
+                      const mapping::RectifiedStereo& stereo, const InverseDepthColours& colours) {
+  cv::Mat disparity(stereo.height, stereo.width, CV_16UC1, cv::Scalar(0));
+  for (const mapping::DepthPoint& p : map.points) {
+    const int u = static_cast<int>(std::lround(p.u)), v = static_cast<int>(std::lround(p.v));
+    const double raw = std::round(256.0 * stereo.Disparity(p.rho));
+    if (u >= 0 && v >= 0 && u < stereo.width && v < stereo.height && raw >= 1.0 && raw <= 65535.0)
+      disparity.at<std::uint16_t>(v, u) = static_cast<std::uint16_t>(raw);
+  }
+  const std::string disparity_png = (dir / ("disparity_" + index + ".png")).string();
+  const std::string colour_png = (dir / ("inverse_depth_" + index + ".png")).string();
+  if (!cv::imwrite(disparity_png, disparity)) return IoError(disparity_png + ": cannot write");
+  if (!cv::imwrite(colour_png, InverseDepthImage(map, stereo.width, stereo.height, colours)))
+    return IoError(colour_png + ": cannot write");
+  return Status::Ok();
+}
+
 Status WritePly(const std::string& path, const mapping::GlobalCloud& cloud,
                 const InverseDepthColours& colours) {
   std::ofstream out(path, std::ios::binary);
@@ -93,21 +115,6 @@ Status WritePly(const std::string& path, const mapping::GlobalCloud& cloud,
   return out ? Status::Ok() : IoError(path + ": write failed");
 }
 
-nlohmann::json AccuracyJson(const eval::TrajectoryError& e) {
-  return {{"alignment", "se3"},
-          {"pairs", e.pairs},
-          {"path_length_m", e.path_length_m},
-          {"ate_rmse_m", e.ate_rmse_m},
-          {"ate_mean_m", e.ate_mean_m},
-          {"ate_median_m", e.ate_median_m},
-          {"ate_max_m", e.ate_max_m},
-          {"ate_percent_of_path", e.path_length_m > 0 ? 100.0 * e.ate_rmse_m / e.path_length_m : 0.0},
-          {"ate_rotation_rmse_deg", e.ate_rotation_rmse_deg},
-          {"rpe_step_s", e.rpe_step_s},
-          {"rpe_translation_rmse_m", e.rpe_translation_rmse_m},
-          {"rpe_rotation_rmse_deg", e.rpe_rotation_rmse_deg}};
-}
-
 }  // namespace
 
 Expected<OdometryRunResult> RunOdometry(const OdometryRunRequest& request, Context& ctx) {
@@ -116,7 +123,8 @@ Expected<OdometryRunResult> RunOdometry(const OdometryRunRequest& request, Conte
   const pipeline::OdometryConfig& config = *request.config;
   const geometry::StereoRig& rig = s.calibration.rig;
   std::error_code ec;
-  fs::create_directories(fs::path(request.out_dir) / "inverse_depth", ec);
+  fs::remove_all(fs::path(request.out_dir) / "depth", ec);  // no maps of an earlier run stay
+  fs::create_directories(fs::path(request.out_dir) / "depth", ec);
   if (ec) return IoError(request.out_dir + ": cannot create the folder (" + ec.message() + ")");
 
   pipeline::Odometry odometry(rig, config, request.begin_ns);
@@ -127,7 +135,11 @@ Expected<OdometryRunResult> RunOdometry(const OdometryRunRequest& request, Conte
   std::ofstream csv(fs::path(request.out_dir) / "timings.csv");
   csv << "t_s,status,time_surface_ms,aa_ms,sampling_ms,tracking_ms,iterations,mapping_ms,"
          "map_points\n";
-  const int depth_image_every = std::max(1, static_cast<int>(std::lround(config.mapping.rate_hz)));
+  // depth/: every `depth_every` mapping cycles (5 per second at the presets' 20 Hz) the local map
+  // as disparity_INDEX.png (the layout of a sequence's ground-truth depth, so `aavio eval --run`
+  // scores it) and as inverse_depth_INDEX.png (colour, the paper's figures).
+  const int depth_every = std::max(1, static_cast<int>(std::lround(config.mapping.rate_hz / 5.0)));
+  std::string depth_stamps = "# t[s] index\n";
   // map.ply: points up to the far end of the depth range (at most 50 m) on voxels of 0.5 % of it
   // (rpg 0.5–5 m: 2.5 cm; DSEC: 25 cm).
   const double cloud_depth_m = std::min(1.0 / config.mapping.inv_depth_min, 50.0);
@@ -156,12 +168,13 @@ Expected<OdometryRunResult> RunOdometry(const OdometryRunRequest& request, Conte
     }
     if (t.map) {
       cloud.Add(*t.map, cloud_depth_m);
-      if (cycles++ % depth_image_every == 0 && write_status.ok()) {
-        const std::string name = StrFormat("inverse_depth/%012.6f.png", NsToSeconds(t.t_ns));
-        const cv::Mat image = InverseDepthImage(*t.map, rig.width(), rig.height(), colours);
-        if (!cv::imwrite((fs::path(request.out_dir) / name).string(), image))
-          write_status = IoError(request.out_dir + "/" + name + ": cannot write");
+      if (cycles % depth_every == 0 && write_status.ok()) {
+        const std::string index = StrFormat("%06d", cycles / depth_every);
+        write_status = WriteDepthMaps(fs::path(request.out_dir) / "depth", index, *t.map,
+                                      mapping::RectifiedStereo::FromRig(rig), colours);
+        depth_stamps += StrFormat("%.9f %s\n", NsToSeconds(t.t_ns), index.c_str());
       }
+      ++cycles;
     }
     csv << StrFormat("%.6f,%s,%.4f,%.4f,%.4f,%.4f,%d,%.4f,%zu\n", NsToSeconds(t.t_ns),
                      StatusName(t.status), t.representation.time_surface_ms,
@@ -216,14 +229,25 @@ Expected<OdometryRunResult> RunOdometry(const OdometryRunRequest& request, Conte
                                                       request.config_origin)));
   AAVIO_RETURN_IF_ERROR(WritePly((out / "map.ply").string(), cloud, colours));
 
-  // Accuracy against the sequence's ground truth, if it has one in TUM text.
+  AAVIO_RETURN_IF_ERROR(
+      io::WriteTextFile((out / "depth" / "timestamps.txt").string(), depth_stamps));
+
+  // Accuracy against the sequence's ground truth, if it has one in TUM text (what `aavio eval
+  // --run` computes, se3-aligned).
   const io::SequenceDescription& d = s.description;
   if (d.gt_trajectory && d.gt_trajectory->format == io::SourceFormat::kText && !trajectory.empty()) {
-    Expected<std::vector<geometry::StampedPose>> gt = io::ReadTumTrajectory(d.gt_trajectory->path);
+    Expected<RunGroundTruth> truth = LoadRunGroundTruth(d.origin);
+    if (!truth) return truth.status();
+    Expected<std::vector<geometry::StampedPose>> gt = io::ReadTumTrajectory(truth->trajectory_path);
     if (!gt) return gt.status();
-    Expected<std::vector<eval::PosePair>> pairs = eval::Associate(trajectory, *gt);
-    if (!pairs) return pairs.status().WithContext(d.gt_trajectory->path);
-    result.accuracy = eval::EvaluateTrajectory(*pairs, eval::Alignment::kSe3, 0.1);
+    Expected<TrajectoryEvaluation> e = EvaluateTrajectories(trajectory, *gt, {});
+    if (!e) return e.status().WithContext(truth->trajectory_path);
+    result.accuracy = std::move(*e);
+    if (!truth->depth_dir.empty() && cycles > 0) {
+      Expected<eval::DepthErrorAccumulator> depth =
+          EvaluateRunDepth((out / "depth").string(), *truth, *gt);
+      if (depth) result.depth = depth->Summary();
+    }
   }
 
   nlohmann::json summary;
@@ -236,11 +260,12 @@ Expected<OdometryRunResult> RunOdometry(const OdometryRunRequest& request, Conte
   summary["real_time_factor"] = result.wall_s > 0.0 ? result.data_s / result.wall_s : 0.0;
   summary["events"] = events;
   summary["poses"] = trajectory.size();
-  summary["tracking_status"] = status_counts;
+  summary["status"] = status_counts;
   summary["bootstraps"] = bootstraps;
   summary["reinitialisations"] = reinitialisations;
   summary["map_points_global"] = cloud.points().size();
   const auto [rss_mb, peak_mb] = MemoryMb();
+  summary["peak_rss_mb"] = peak_mb;
   summary["memory"] = {{"peak_rss_mb", peak_mb}, {"final_rss_mb", rss_mb},
                        {"rss_mb_over_time", rss_over_time}};
   for (const auto& [stage, st] : timings.Summary()) {
@@ -249,7 +274,8 @@ Expected<OdometryRunResult> RunOdometry(const OdometryRunRequest& request, Conte
                                 {"calls", st.calls},
                                 {"median_items", st.median_items}};
   }
-  if (result.accuracy) summary["accuracy"] = AccuracyJson(*result.accuracy);
+  if (result.accuracy) summary["accuracy"] = TrajectoryEvaluationJson(*result.accuracy);
+  if (result.depth) summary["depth"] = DepthJson(*result.depth);
   AAVIO_RETURN_IF_ERROR(io::WriteTextFile((out / "summary.json").string(), summary.dump(2) + "\n"));
 
   // The end-of-run summary.
@@ -269,17 +295,19 @@ Expected<OdometryRunResult> RunOdometry(const OdometryRunRequest& request, Conte
   }
   ctx.out << stages << "\n";
   if (result.accuracy) {
-    const eval::TrajectoryError& e = *result.accuracy;
+    const eval::TrajectoryError& e = result.accuracy->absolute;
     ctx.out << StrFormat(
         "accuracy vs ground truth (%zu poses, se3-aligned, path %.2f m): ATE RMSE %.4f m "
-        "(%.2f %% of the path), RPE over %.1f s: %.4f m, %.3f deg\n",
+        "(%.2f %% of the path); RPE %.2f %%, %.3f deg/m; over %.1f s: %.4f m, %.3f deg\n",
         e.pairs, e.path_length_m, e.ate_rmse_m,
-        e.path_length_m > 0 ? 100.0 * e.ate_rmse_m / e.path_length_m : 0.0, e.rpe_step_s,
-        e.rpe_translation_rmse_m, e.rpe_rotation_rmse_deg);
+        e.path_length_m > 0 ? 100.0 * e.ate_rmse_m / e.path_length_m : 0.0,
+        result.accuracy->relative.trans_pct_rmse, result.accuracy->relative.rot_deg_per_m_rmse,
+        e.rpe_step_s, e.rpe_translation_rmse_m, e.rpe_rotation_rmse_deg);
   }
+  if (result.depth) ctx.out << DepthTable(*result.depth);
   ctx.out << "wrote " << request.out_dir
           << "/{stamped_traj_estimate.txt,summary.json,timings.csv,config.yaml,map.ply,"
-             "inverse_depth/}\n";
+             "depth/}\n";
   return result;
 }
 

@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "aavio/eval/trajectory_error.hpp"
 #include "aavio/pipeline/odometry_config.hpp"
 #include "cli.hpp"
+#include "run_evaluation.hpp"
 #include "sequence_opening.hpp"
 
 namespace aavio::cli {
@@ -31,7 +31,8 @@ struct OdometryRunResult {
   double data_s = 0.0, wall_s = 0.0;
   std::size_t poses = 0;
   bool interrupted = false;
-  std::optional<eval::TrajectoryError> accuracy;  ///< against the sequence's ground truth
+  std::optional<TrajectoryEvaluation> accuracy;  ///< against the sequence's ground truth
+  std::optional<eval::DepthErrorSummary> depth;  ///< depth/ against the ground-truth depth
 };
 
 Expected<OdometryRunResult> RunOdometry(const OdometryRunRequest& request, Context& ctx);

@@ -28,6 +28,7 @@
 #include "config_resolution.hpp"
 #include "sequence_opening.hpp"
 #include "odometry_run.hpp"
+#include "run_evaluation.hpp"
 #include "track_gt_map.hpp"
 
 namespace aavio::cli {
@@ -62,21 +63,6 @@ Expected<geometry::PoseBuffer> GroundTruthPoses(const io::SequenceDescription& d
   for (const geometry::StampedPose& p : *poses)
     AAVIO_RETURN_IF_ERROR(buffer.Insert(p.t_ns, p.T_world_body));
   return buffer;
-}
-
-nlohmann::json DepthJson(const eval::DepthErrorSummary& s) {
-  return {{"mean_m", s.mean_m},
-          {"median_m", s.median_m},
-          {"relative", s.relative},
-          {"relative_median", s.relative_median},
-          {"outliers_over_10pct", s.outliers},
-          {"completeness", s.completeness},
-          {"completeness_near_horizontal", s.completeness_horizontal},
-          {"completeness_other", s.completeness_other},
-          {"points", s.points},
-          {"points_near_horizontal", s.points_horizontal},
-          {"relative_near_horizontal", s.relative_horizontal},
-          {"frames", s.frames}};
 }
 
 std::atomic<bool> g_interrupted{false};  // Ctrl-C during a run: stop and write what is done

@@ -1,0 +1,143 @@
+// `aavio eval`: trajectory accuracy of an estimate against ground truth (`--est` + `--gt`), or of
+// a run folder against the ground truth its sequence names (`--run`, with depth accuracy too);
+// the definitions are those of rpg_trajectory_evaluation (docs/evaluation.md).
+#include <CLI/CLI.hpp>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <ostream>
+
+#include "aavio/common/format.hpp"
+#include "aavio/io/trajectory_io.hpp"
+#include "aavio/mapping/rectified_stereo.hpp"
+#include "cli.hpp"
+#include "run_evaluation.hpp"
+#include "sequence_opening.hpp"
+
+namespace aavio::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct EvalOptions {
+  std::string est, gt, run, sequence;
+  std::string align = "se3";
+  int align_frames = -1;
+  double max_dt_s = 0.02;
+  std::vector<double> lengths_m, fractions;
+  bool json = false;
+};
+
+Expected<RunGroundTruth> RunSequence(const EvalOptions& options) {
+  std::string sequence = options.sequence;
+  if (sequence.empty()) {
+    const fs::path summary_path = fs::path(options.run) / "summary.json";
+    std::ifstream in(summary_path);
+    if (!in) {
+      return NotFound(summary_path.string() +
+                      ": not found; --run takes a folder written by `aavio run`");
+    }
+    nlohmann::json summary;
+    try {
+      in >> summary;
+      sequence = summary.at("sequence").get<std::string>();
+    } catch (const nlohmann::json::exception& e) {
+      return ParseError(summary_path.string() + ": no readable \"sequence\" entry (" + e.what() +
+                        "); name the sequence with --sequence");
+    }
+  }
+  return LoadRunGroundTruth(sequence);
+}
+
+Status Evaluate(const EvalOptions& options, Context& ctx) {
+  TrajectoryEvalOptions eval_options;
+  Expected<eval::Alignment> alignment = eval::ParseAlignment(options.align);
+  if (!alignment) return alignment.status().WithContext("--align");
+  eval_options.alignment = *alignment;
+  eval_options.align_frames = options.align_frames;
+  eval_options.max_dt_s = options.max_dt_s;
+  if (!options.fractions.empty()) eval_options.rpe.fractions = options.fractions;
+  eval_options.rpe.lengths_m = options.lengths_m;
+
+  std::string est_path = options.est, gt_path = options.gt;
+  std::optional<RunGroundTruth> truth;
+  if (!options.run.empty()) {
+    Expected<RunGroundTruth> t = RunSequence(options);
+    if (!t) return t.status();
+    truth = std::move(*t);
+    est_path = (fs::path(options.run) / "stamped_traj_estimate.txt").string();
+    gt_path = truth->trajectory_path;
+  }
+  Expected<std::vector<geometry::StampedPose>> est = io::ReadTumTrajectory(est_path);
+  if (!est) return est.status();
+  Expected<std::vector<geometry::StampedPose>> gt = io::ReadTumTrajectory(gt_path);
+  if (!gt) return gt.status();
+  Expected<TrajectoryEvaluation> e = EvaluateTrajectories(*est, *gt, eval_options);
+  if (!e) return e.status().WithContext(est_path + " vs " + gt_path);
+
+  std::optional<eval::DepthErrorSummary> depth;
+  const fs::path run_depth = fs::path(options.run) / "depth";
+  if (truth && !truth->depth_dir.empty() && fs::exists(run_depth / "timestamps.txt")) {
+    Expected<eval::DepthErrorAccumulator> d = EvaluateRunDepth(run_depth.string(), *truth, *gt);
+    if (!d) return d.status();
+    depth = d->Summary();
+  }
+  if (options.json) {
+    nlohmann::json j = TrajectoryEvaluationJson(*e);
+    j["estimate"] = est_path;
+    j["ground_truth"] = gt_path;
+    if (depth) j["depth"] = DepthJson(*depth);
+    ctx.out << j.dump(2) << "\n";
+    return Status::Ok();
+  }
+  ctx.out << "estimate     " << est_path << "\nground truth " << gt_path << "\n";
+  ctx.out << TrajectoryEvaluationTable(*e);
+  if (depth) ctx.out << DepthTable(*depth);
+  else if (truth && !truth->depth_dir.empty())
+    ctx.out << "depth: the run has no depth/ maps (runs from before this version, or mapping "
+               "never started)\n";
+  return Status::Ok();
+}
+
+}  // namespace
+
+void RegisterEval(CLI::App& app, Context& ctx) {
+  auto options = std::make_shared<EvalOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "eval", "Trajectory accuracy (ATE, RPE) of an estimate, or of a run with its depth accuracy");
+  sub->add_option("--est", options->est, "Estimated trajectory (TUM)");
+  sub->add_option("--gt", options->gt, "Ground-truth trajectory (TUM), same clock");
+  sub->add_option("--run", options->run,
+                  "A run folder of `aavio run`: its trajectory and depth maps against the ground "
+                  "truth its sequence names");
+  sub->add_option("--sequence", options->sequence,
+                  "With --run: the sequence, if it moved since the run");
+  sub->add_option("--align", options->align, "se3 | sim3 | posyaw | none")->capture_default_str();
+  sub->add_option("--align-frames", options->align_frames,
+                  "Align on the first N pose pairs only (-1: all)")
+      ->capture_default_str();
+  sub->add_option("--max-dt", options->max_dt_s, "Association window [s]")->capture_default_str();
+  sub->add_option("--lengths", options->lengths_m,
+                  "RPE sub-trajectory lengths [m] (default: 10,20,30,40,50 % of the path)")
+      ->delimiter(',');
+  sub->add_option("--fractions", options->fractions,
+                  "RPE sub-trajectory lengths as fractions of the path")
+      ->delimiter(',');
+  sub->add_flag("--json", options->json, "Print JSON (the keys of design.md §4)");
+  sub->callback([&ctx, options] {
+    ctx.action = [&ctx, options] {
+      const bool pair = !options->est.empty() || !options->gt.empty();
+      if (pair == !options->run.empty() ||
+          (pair && (options->est.empty() || options->gt.empty()))) {
+        ctx.err << "aavio eval: give either --est TRAJ --gt TRAJ, or --run DIR\n";
+        return static_cast<int>(kExitUsage);
+      }
+      const Status status = Evaluate(*options, ctx);
+      if (status.ok()) return static_cast<int>(kExitOk);
+      ctx.err << "aavio eval: error: " << status.message() << "\n";
+      return static_cast<int>(kExitError);
+    };
+  });
+}
+
+}  // namespace aavio::cli

@@ -1,0 +1,67 @@
+#pragma once
+/// What `aavio eval` computes and `aavio run` / `aavio report` reuse (docs/evaluation.md):
+/// trajectory accuracy of an estimate against ground truth (association, alignment, ATE, the
+/// distance-based RPE of rpg_trajectory_evaluation and its ESVO-paper summary, the per-tick RPE),
+/// and depth accuracy of a run's depth maps (`depth/` of a run folder) against the sequence's
+/// ground-truth depth.
+
+#include <nlohmann/json_fwd.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "aavio/common/status.hpp"
+#include "aavio/eval/depth_error.hpp"
+#include "aavio/eval/relative_error.hpp"
+#include "aavio/eval/trajectory_error.hpp"
+#include "aavio/geometry/pose_buffer.hpp"
+
+namespace aavio::cli {
+
+struct TrajectoryEvalOptions {
+  eval::Alignment alignment = eval::Alignment::kSe3;  ///< stereo VO: se3 (design.md §6)
+  int align_frames = -1;                              ///< align on the first N pairs; −1 all
+  double max_dt_s = 0.02;                             ///< association window
+  double rpe_step_s = 0.1;                            ///< per-tick RPE (what `aavio run` prints)
+  eval::RelativeErrorConfig rpe;
+};
+
+struct TrajectoryEvaluation {
+  TrajectoryEvalOptions options;
+  std::vector<eval::PosePair> pairs;
+  double gt_path_length_m = 0.0;  ///< of the whole ground truth (the RPE lengths' reference)
+  eval::TrajectoryError absolute;
+  eval::RelativeError relative;
+};
+
+Expected<TrajectoryEvaluation> EvaluateTrajectories(
+    const std::vector<geometry::StampedPose>& estimate,
+    const std::vector<geometry::StampedPose>& ground_truth, const TrajectoryEvalOptions& options);
+
+/// The ground truth a sequence names, as evaluating a run of it needs it.
+struct RunGroundTruth {
+  std::string sequence;         ///< its sequence.yaml (or folder)
+  std::string trajectory_path;  ///< TUM text
+  std::string depth_dir;        ///< empty when the sequence has no ground-truth depth
+  eval::PinholeCamera camera;   ///< the rectified left camera
+  double fb = 0.0, disparity_offset = 0.0;  ///< for disparity-PNG ground truth (DSEC)
+};
+
+Expected<RunGroundTruth> LoadRunGroundTruth(const std::string& sequence);
+
+/// Scores every depth map of `run_depth_dir` (`timestamps.txt` + `disparity_INDEX.png` or
+/// `depth_INDEX.tiff`, the layout `aavio run` and `aavio simulate` share) against the ground-truth frame nearest in time (within
+/// 25 ms; the camera's true motion between the two stamps from `gt_poses`).
+Expected<eval::DepthErrorAccumulator> EvaluateRunDepth(
+    const std::string& run_depth_dir, const RunGroundTruth& truth,
+    const std::vector<geometry::StampedPose>& gt_poses);
+
+/// The `aavio eval --json` keys of design.md §4.
+nlohmann::json TrajectoryEvaluationJson(const TrajectoryEvaluation& e);
+nlohmann::json DepthJson(const eval::DepthErrorSummary& s);
+
+/// A readable table of the same.
+std::string TrajectoryEvaluationTable(const TrajectoryEvaluation& e);
+std::string DepthTable(const eval::DepthErrorSummary& s);
+
+}  // namespace aavio::cli
