@@ -13,7 +13,7 @@ tracking::Camera CameraOf(const geometry::StereoRig& rig) {
 }  // namespace
 
 Odometry::Odometry(const geometry::StereoRig& rig, const OdometryConfig& config, TimeNs start_ns,
-                   const geometry::RigidTransform& T_world_start)
+                   const geometry::RigidTransform& T_world_start, bool run_mapping)
     : config_(config),
       rectification_(geometry::BuildStereoRectification(rig)),
       stereo_(mapping::RectifiedStereo::FromRig(rig)),
@@ -28,7 +28,8 @@ Odometry::Odometry(const geometry::StereoRig& rig, const OdometryConfig& config,
       tick_ns_(SecondsToNs(1.0 / config.time_surface.rate_hz)),
       next_tick_ns_(start_ns + tick_ns_),
       ticks_per_cycle_(std::max(
-          1, static_cast<int>(std::lround(config.time_surface.rate_hz / config.mapping.rate_hz)))) {
+          1, static_cast<int>(std::lround(config.time_surface.rate_hz / config.mapping.rate_hz)))),
+      run_mapping_(run_mapping) {
   tracker_.Reset(start_ns, T_world_start);
 }
 
@@ -63,6 +64,7 @@ Status Odometry::Tick(TimeNs t_ns) {
   OdometryTick tick;
   tick.t_ns = t_ns;
   tick.representation = obs->timings;
+  if (before_tick) before_tick(*obs);
 
   // The IMU samples around (previous tick, t]: keep one at or before the previous tick.
   while (imu_.size() > 2 && imu_[1].t_ns <= t_ns - tick_ns_)
@@ -74,7 +76,12 @@ Status Odometry::Tick(TimeNs t_ns) {
   tick.status = tracked.status;
   tick.registration_iterations = tracked.registration.iterations;
   tick.tracking_ms = tracked.prediction_ms + tracked.registration_ms;
+  tick.prediction_ms = tracked.prediction_ms;
   tick.gyro_bias = tracker_.gyro_bias();
+  if (!run_mapping_) {
+    if (on_tick) on_tick(tick);
+    return Status::Ok();
+  }
   const mapping::PosedObservation now{obs, tracked.T_world_cur};
 
   if (!mapper_.initialized()) {

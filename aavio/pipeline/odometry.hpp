@@ -12,6 +12,9 @@
 /// by the gyroscope). After `pipeline.max_lost_ticks` lost ticks in a row, mapping is reset and
 /// bootstraps again at the held pose (the last good pose carried forward by the gyroscope),
 /// never back at the origin.
+///
+/// Tracking alone (`run_mapping` false): no mapping, no bootstrap; the caller hands maps in with
+/// SetTrackingMap (e.g. from `before_tick`, built from ground truth) — tracking measured on its own.
 
 #include <deque>
 #include <functional>
@@ -32,7 +35,8 @@ struct OdometryTick {
   geometry::RigidTransform T_world_cam;  ///< rectified left camera
   tracking::TrackingStatus status = tracking::TrackingStatus::kNoMap;
   int registration_iterations = 0;
-  double tracking_ms = 0.0;
+  double tracking_ms = 0.0;  ///< prediction + registration
+  double prediction_ms = 0.0;
   events::RepresentationTimings representation;
   bool mapped = false;       ///< a mapping cycle ran on this tick
   bool bootstrap = false;    ///< ... and it was an SGM (re-)initialisation that succeeded
@@ -46,7 +50,7 @@ class Odometry {
  public:
   /// `T_world_start`: the pose at `start_ns` (identity: the world is the first camera frame).
   Odometry(const geometry::StereoRig& rig, const OdometryConfig& config, TimeNs start_ns,
-           const geometry::RigidTransform& T_world_start = {});
+           const geometry::RigidTransform& T_world_start = {}, bool run_mapping = true);
 
   /// Adds both cameras' events and the IMU samples of [.., t_end_ns) (each time-ordered) and runs
   /// every tick due by then; each goes to `on_tick`.
@@ -54,6 +58,12 @@ class Odometry {
                  std::span<const imu::ImuSample> imu, TimeNs t_end_ns);
 
   std::function<void(const OdometryTick&)> on_tick;
+  /// Called with each tick's observation before it is tracked.
+  std::function<void(const events::Observation&)> before_tick;
+  /// Tracking alone: the map the next ticks track against.
+  void SetTrackingMap(std::shared_ptr<const tracking::TrackingMap> map) {
+    tracker_.SetMap(std::move(map));
+  }
   std::int64_t ticks() const { return ticks_; }
 
  private:
@@ -70,6 +80,7 @@ class Odometry {
   std::deque<imu::ImuSample> imu_;
   TimeNs tick_ns_, next_tick_ns_;
   int ticks_per_cycle_;
+  bool run_mapping_;
   std::int64_t ticks_ = 0;
   int lost_ticks_ = 0;
 };

@@ -17,7 +17,7 @@
 #include "aavio/io/ground_truth_depth.hpp"
 #include "aavio/io/trajectory_io.hpp"
 #include "aavio/pipeline/stage_timings.hpp"
-#include "aavio/pipeline/tracking_front_end.hpp"
+#include "aavio/pipeline/odometry.hpp"
 
 namespace aavio::cli {
 namespace {
@@ -63,8 +63,8 @@ Status RunTrackingOnGtMap(const RunRequest& request, Context& ctx) {
   Expected<geometry::RigidTransform> start_pose = gt.Query(request.begin_ns);
   if (!start_pose) return start_pose.status().WithContext("ground truth at the start");
 
-  pipeline::TrackingFrontEnd front_end(s.calibration.rig, *request.config, request.begin_ns,
-                                       *start_pose);
+  pipeline::Odometry front_end(s.calibration.rig, *request.config, request.begin_ns, *start_pose,
+                               /*run_mapping=*/false);
   std::size_t next_map = 0;
   Status map_status = Status::Ok();
   front_end.before_tick = [&](const events::Observation& obs) {
@@ -83,22 +83,22 @@ Status RunTrackingOnGtMap(const RunRequest& request, Context& ctx) {
       map_status = map.status();
       return;
     }
-    front_end.SetMap(std::move(*map));
+    front_end.SetTrackingMap(std::move(*map));
   };
   std::vector<geometry::StampedPose> estimate, truth;
   pipeline::StageTimings timings;
   std::map<std::string, int> status_counts;
-  front_end.on_pose = [&](const tracking::TrackingResult& r,
-                          const events::RepresentationTimings& t) {
-    timings.Add("time_surface", t.time_surface_ms);
-    timings.Add("tracking", r.registration_ms, static_cast<double>(r.registration.iterations));
+  front_end.on_tick = [&](const pipeline::OdometryTick& r) {
+    timings.Add("time_surface", r.representation.time_surface_ms);
+    timings.Add("tracking", r.tracking_ms - r.prediction_ms,
+                static_cast<double>(r.registration_iterations));
     timings.Add("prediction", r.prediction_ms);
     status_counts[r.status == tracking::TrackingStatus::kOk     ? "ok"
                   : r.status == tracking::TrackingStatus::kLost ? "lost"
                                                                 : "no_map"]++;
     Expected<geometry::RigidTransform> g = gt.Query(r.t_ns);
     if (!g) return;
-    estimate.push_back({r.t_ns, r.T_world_cur});
+    estimate.push_back({r.t_ns, r.T_world_cam});
     truth.push_back({r.t_ns, *g});
   };
   std::int64_t events = 0;
