@@ -74,6 +74,7 @@ Status Odometry::Tick(TimeNs t_ns) {
       tracker_.Track(*obs, rectification_.left.valid_mask, window);
   tick.T_world_cam = tracked.T_world_cur;
   tick.status = tracked.status;
+  tick.lost_reason = tracked.lost_reason;
   tick.registration_iterations = tracked.registration.iterations;
   tick.tracking_ms = tracked.prediction_ms + tracked.registration_ms;
   tick.prediction_ms = tracked.prediction_ms;

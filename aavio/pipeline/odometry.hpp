@@ -34,6 +34,7 @@ struct OdometryTick {
   TimeNs t_ns = 0;
   geometry::RigidTransform T_world_cam;  ///< rectified left camera
   tracking::TrackingStatus status = tracking::TrackingStatus::kNoMap;
+  tracking::LostReason lost_reason = tracking::LostReason::kNone;
   int registration_iterations = 0;
   double tracking_ms = 0.0;  ///< prediction + registration
   double prediction_ms = 0.0;

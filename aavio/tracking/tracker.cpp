@@ -7,6 +7,17 @@
 #include "aavio/imu/gyro_preintegration.hpp"
 
 namespace aavio::tracking {
+
+const char* LostReasonName(LostReason reason) {
+  switch (reason) {
+    case LostReason::kNone: return "none";
+    case LostReason::kFewValid: return "few_valid_residuals";
+    case LostReason::kCostGrew: return "cost_grew";
+    case LostReason::kRotationJump: return "rotation_jump";
+    case LostReason::kTranslationJump: return "translation_jump";
+  }
+  return "?";
+}
 namespace {
 using Clock = std::chrono::steady_clock;
 double MsSince(Clock::time_point t) {
@@ -17,10 +28,12 @@ double MsSince(Clock::time_point t) {
 geometry::RigidTransform PredictPose(
     const geometry::RigidTransform& T_world_prev,
     const std::optional<geometry::RigidTransform>& T_world_prevprev,
-    const std::optional<Eigen::Matrix3d>& delta_R_cam) {
+    const std::optional<Eigen::Matrix3d>& delta_R_cam,
+    const std::optional<Eigen::Vector3d>& velocity_per_tick) {
   geometry::RigidTransform pred = T_world_prev;
+  if (velocity_per_tick) pred.t = T_world_prev.t + *velocity_per_tick;
   if (T_world_prevprev) {
-    pred.t = T_world_prev.t + (T_world_prev.t - T_world_prevprev->t);
+    if (!velocity_per_tick) pred.t = T_world_prev.t + (T_world_prev.t - T_world_prevprev->t);
     if (!delta_R_cam) {
       pred.R = geometry::Orthonormalize(T_world_prev.R *
                                         (T_world_prevprev->R.transpose() * T_world_prev.R));
@@ -43,6 +56,7 @@ void Tracker::Reset(TimeNs t_ns, const geometry::RigidTransform& T_world_cam) {
   t_prev_ = t_ns;
   T_prev_ = T_world_cam;
   T_prevprev_.reset();
+  velocity_.setZero();
   prev_tracked_ = false;
   if (!bias_) bias_.emplace(imu_config_, t_ns);
 }
@@ -61,12 +75,13 @@ TrackingResult Tracker::Track(const events::Observation& obs, const cv::Mat& val
   }
   if (imu_config_.use_gyro_prior && delta_R_imu)
     delta_R_cam = imu::ImuToCameraRotation(*delta_R_imu, R_imu_cam_);
-  const geometry::RigidTransform predicted = PredictPose(T_prev_, T_prevprev_, delta_R_cam);
+  const geometry::RigidTransform predicted =
+      PredictPose(T_prev_, T_prevprev_, delta_R_cam, velocity_);
   result.prediction_ms = MsSince(start);
   result.T_world_cur = predicted;
   result.T_world_predicted = predicted;
   result.status = TrackingStatus::kNoMap;
-  if (map_ && static_cast<int>(map_->points_world.size()) >= config_.batch_size) {
+  if (map_ && static_cast<int>(map_->points_world.size()) >= config_.min_map_points) {
     start = Clock::now();
     // The map in its reference frame; the increment acts on T_ref,cur.
     const geometry::RigidTransform T_ref_world = map_->T_world_ref.Inverse();
@@ -84,10 +99,15 @@ TrackingResult Tracker::Track(const events::Observation& obs, const cv::Mat& val
     // far from the prediction (with the gyroscope: a rotation the IMU did not measure).
     const geometry::RigidTransform correction = predicted.Inverse() * estimate;
     const double rotation_deg = geometry::LogSO3(correction.R).norm() * 180.0 / M_PI;
-    const bool diverged = result.registration.valid_fraction < 0.3 ||
-                          result.registration.final_cost > 1.5 * result.registration.initial_cost ||
-                          rotation_deg > config_.max_correction_deg ||
-                          correction.t.norm() > config_.max_correction_m;
+    if (result.registration.valid_fraction < 0.3)
+      result.lost_reason = LostReason::kFewValid;
+    else if (result.registration.final_cost > 1.5 * result.registration.initial_cost)
+      result.lost_reason = LostReason::kCostGrew;
+    else if (rotation_deg > config_.max_correction_deg)
+      result.lost_reason = LostReason::kRotationJump;
+    else if (correction.t.norm() > config_.max_correction_m)
+      result.lost_reason = LostReason::kTranslationJump;
+    const bool diverged = result.lost_reason != LostReason::kNone;
     result.status = diverged ? TrackingStatus::kLost : TrackingStatus::kOk;
     if (!diverged) result.T_world_cur = estimate;
   }
@@ -99,6 +119,12 @@ TrackingResult Tracker::Track(const events::Observation& obs, const cv::Mat& val
   }
   prev_tracked_ = result.status == TrackingStatus::kOk;
   // Lost or without a map: hold the prediction but forget the velocity (no run-away).
+  if (result.status == TrackingStatus::kOk) {
+    const double gain = config_.velocity_gain;
+    velocity_ = gain * (result.T_world_cur.t - T_prev_.t) + (1.0 - gain) * velocity_;
+  } else {
+    velocity_.setZero();
+  }
   T_prevprev_ = result.status == TrackingStatus::kOk ? std::optional(T_prev_) : std::nullopt;
   T_prev_ = result.T_world_cur;
   t_prev_ = obs.t_ns;

@@ -20,6 +20,16 @@ namespace aavio::tracking {
 
 enum class TrackingStatus { kOk, kNoMap, kLost };
 
+/// Why a tick was declared lost (the first test that failed, in this order).
+enum class LostReason {
+  kNone,
+  kFewValid,     ///< under 30 % of the residuals inside the image and mask
+  kCostGrew,     ///< the registration ended 50 % above its starting cost
+  kRotationJump,  ///< corrected the prediction by more than max_correction_deg
+  kTranslationJump,  ///< ... or by more than max_correction_m
+};
+const char* LostReasonName(LostReason reason);
+
 /// What tracking registers against: map points in the world, and its reference pose.
 struct TrackingMap {
   std::vector<Eigen::Vector3d> points_world;
@@ -31,16 +41,18 @@ struct TrackingResult {
   geometry::RigidTransform T_world_cur;
   geometry::RigidTransform T_world_predicted;  ///< the registration's starting point
   TrackingStatus status = TrackingStatus::kNoMap;
+  LostReason lost_reason = LostReason::kNone;
   RegistrationResult registration;
   double prediction_ms = 0.0, registration_ms = 0.0;
 };
 
 /// The predicted pose: rotation R_prev·ΔR_cam from the gyroscope if given, else constant angular
-/// velocity; translation t_prev + (t_prev − t_prevprev).
+/// velocity; translation t_prev + v with v the given velocity per tick, or else t_prev − t_prevprev.
 geometry::RigidTransform PredictPose(
     const geometry::RigidTransform& T_world_prev,
     const std::optional<geometry::RigidTransform>& T_world_prevprev,
-    const std::optional<Eigen::Matrix3d>& delta_R_cam);
+    const std::optional<Eigen::Matrix3d>& delta_R_cam,
+    const std::optional<Eigen::Vector3d>& velocity_per_tick = std::nullopt);
 
 class Tracker {
  public:
@@ -69,6 +81,7 @@ class Tracker {
   TimeNs t_prev_ = 0;
   geometry::RigidTransform T_prev_;
   std::optional<geometry::RigidTransform> T_prevprev_;
+  Eigen::Vector3d velocity_ = Eigen::Vector3d::Zero();  // smoothed translation per tick
   bool prev_tracked_ = false;  // the previous pose came from registration
   std::int64_t ticks_ = 0;
 };

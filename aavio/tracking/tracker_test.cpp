@@ -34,6 +34,14 @@ TEST(PredictPose, ConstantVelocityAndGyroRotation) {
   // First tick: no velocity yet.
   const geometry::RigidTransform first = PredictPose(prev, std::nullopt, std::nullopt);
   EXPECT_LT((first.t - prev.t).norm(), 1e-12);
+  // A given (smoothed) velocity replaces the last tick's for the translation only.
+  const geometry::RigidTransform smoothed =
+      PredictPose(prev, prevprev, std::nullopt, Eigen::Vector3d(0.02, 0.0, 0.0));
+  EXPECT_LT((smoothed.t - Eigen::Vector3d(0.12, 0, 1.2)).norm(), 1e-12);
+  EXPECT_LT(RotationDeg(smoothed.R, cv.R), 1e-9);
+  TrackingConfig config;
+  config.velocity_gain = 1.5;
+  EXPECT_FALSE(config.Validate().ok());
 }
 
 // The camera turns with a growing rate ω_y = 6t rad/s (constant velocity lags behind) and moves

@@ -8,12 +8,14 @@ Status TrackingConfig::Validate() const {
       .InRange("batch_size", batch_size, 1, 1000000)
       .Require(batch_size <= max_points, "batch_size",
                "must not exceed max_points (" + FieldChecker::Num(max_points) + ")")
+      .InRange("min_map_points", min_map_points, 1, 1000000)
       .InRange("max_iterations", max_iterations, 1, 1000)
       .Positive("huber_threshold", huber_threshold)
       .Positive("function_tolerance", function_tolerance)
       .Positive("step_tolerance", step_tolerance)
       .Positive("max_correction_deg", max_correction_deg)
-      .Positive("max_correction_m", max_correction_m);
+      .Positive("max_correction_m", max_correction_m)
+      .InRange("velocity_gain", velocity_gain, 0.0, 1.0);
   return check.status();
 }
 

@@ -8,7 +8,8 @@ namespace aavio::tracking {
 
 struct TrackingConfig {
   int max_points = 2000;             ///< map points sampled per registration problem [paper ~2k]
-  int batch_size = 300;              ///< points per LM step; also the smallest usable map
+  int batch_size = 300;              ///< points per LM step (≥ max_points: all points, plain LM)
+  int min_map_points = 300;          ///< fewer map points than this: no tracking (kNoMap)
   int max_iterations = 10;           ///< LM steps per tick ([ICRA], [ESVO]; ESVO2 rpg 20)
   double huber_threshold = 50.0;     ///< robust loss threshold [TS levels]
   double function_tolerance = 1e-3;  ///< stop on relative cost reduction below it
@@ -17,17 +18,23 @@ struct TrackingConfig {
   /// reference has no such test): rotation [deg] and translation [m] per tick.
   double max_correction_deg = 3.0;
   double max_correction_m = 0.3;
+  /// Translation prediction: the velocity per tick is v ← g·Δt + (1 − g)·v over tracked ticks
+  /// (reset to 0 when lost). 1 = constant velocity of the last tick ([ICRA]); smaller values
+  /// average the registration's noise out of the prediction; 0 = zero motion ([ESVO]).
+  double velocity_gain = 1.0;
 
   template <typename V>
   void VisitFields(V&& v) {
     v("max_points", max_points);
     v("batch_size", batch_size);
+    v("min_map_points", min_map_points);
     v("max_iterations", max_iterations);
     v("huber_threshold", huber_threshold);
     v("function_tolerance", function_tolerance);
     v("step_tolerance", step_tolerance);
     v("max_correction_deg", max_correction_deg);
     v("max_correction_m", max_correction_m);
+    v("velocity_gain", velocity_gain);
   }
   Status Validate() const;
 };

@@ -130,11 +130,11 @@ Expected<OdometryRunResult> RunOdometry(const OdometryRunRequest& request, Conte
   pipeline::Odometry odometry(rig, config, request.begin_ns);
   std::vector<geometry::StampedPose> trajectory;
   pipeline::StageTimings timings;
-  std::map<std::string, int> status_counts;
+  std::map<std::string, int> status_counts, lost_reasons;
   int bootstraps = 0, reinitialisations = 0, cycles = 0;
   std::ofstream csv(fs::path(request.out_dir) / "timings.csv");
   csv << "t_s,status,time_surface_ms,aa_ms,sampling_ms,tracking_ms,iterations,mapping_ms,"
-         "map_points\n";
+         "map_points,lost_reason\n";
   // depth/: every `depth_every` mapping cycles (5 per second at the presets' 20 Hz) the local map
   // as disparity_INDEX.png (the layout of a sequence's ground-truth depth, so `aavio eval --run`
   // scores it) and as inverse_depth_INDEX.png (colour, the paper's figures).
@@ -150,6 +150,8 @@ Expected<OdometryRunResult> RunOdometry(const OdometryRunRequest& request, Conte
   odometry.on_tick = [&](const pipeline::OdometryTick& t) {
     trajectory.push_back({t.t_ns, t.T_world_cam});
     status_counts[StatusName(t.status)]++;
+    if (t.status == tracking::TrackingStatus::kLost)
+      lost_reasons[tracking::LostReasonName(t.lost_reason)]++;
     timings.Add("time_surface", t.representation.time_surface_ms);
     timings.Add("aa_map", t.representation.aa_ms);
     timings.Add("sampling", t.representation.sampling_ms);
@@ -176,10 +178,13 @@ Expected<OdometryRunResult> RunOdometry(const OdometryRunRequest& request, Conte
       }
       ++cycles;
     }
-    csv << StrFormat("%.6f,%s,%.4f,%.4f,%.4f,%.4f,%d,%.4f,%zu\n", NsToSeconds(t.t_ns),
+    csv << StrFormat("%.6f,%s,%.4f,%.4f,%.4f,%.4f,%d,%.4f,%zu,%s\n", NsToSeconds(t.t_ns),
                      StatusName(t.status), t.representation.time_surface_ms,
                      t.representation.aa_ms, t.representation.sampling_ms, t.tracking_ms,
-                     t.registration_iterations, mapping_ms, t.map ? t.map->points.size() : 0);
+                     t.registration_iterations, mapping_ms, t.map ? t.map->points.size() : 0,
+                     t.status == tracking::TrackingStatus::kLost
+                         ? tracking::LostReasonName(t.lost_reason)
+                         : "");
     if (odometry.ticks() % 100 == 0) {
       rss_over_time.push_back({NsToSeconds(t.t_ns - request.begin_ns), MemoryMb().first});
     }
@@ -261,6 +266,7 @@ Expected<OdometryRunResult> RunOdometry(const OdometryRunRequest& request, Conte
   summary["events"] = events;
   summary["poses"] = trajectory.size();
   summary["status"] = status_counts;
+  summary["lost_reasons"] = lost_reasons;
   summary["bootstraps"] = bootstraps;
   summary["reinitialisations"] = reinitialisations;
   summary["map_points_global"] = cloud.points().size();
