@@ -5,6 +5,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "aavio/mapping/depth_refinement.hpp"
+#include "aavio/mapping/edge_snapping.hpp"
 #include "aavio/mapping/sgm_bootstrap.hpp"
 #include "aavio/mapping/static_stereo.hpp"
 #include "aavio/mapping/temporal_stereo.hpp"
@@ -102,8 +103,10 @@ Status Mapper::Update(const PosedObservation& now, const PosedObservation* partn
   const auto start = Clock::now();
   *report = MappingCycleReport{};
   const events::Observation& obs = *now.obs;
-  const std::vector<events::EdgeSample> samples =
+  std::vector<events::EdgeSample> samples =
       UsableSamples(obs, stereo_.width, stereo_.height, config_.max_points);
+  if (config_.snap_to_edge_px > 0.0)
+    SnapToNewestEdge(obs.negative_ts_left, obs.grad_u, obs.grad_v, config_.snap_to_edge_px, &samples);
   report->samples = static_cast<int>(samples.size());
   if (report->samples < config_.min_points) {
     report->total_ms = MsSince(start);

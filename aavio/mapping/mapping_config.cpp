@@ -107,6 +107,7 @@ Status MappingConfig::Validate() const {
       .Require(min_points <= max_points, "min_points",
                "must not exceed max_points (" + FieldChecker::Num(max_points) + ")")
       .NonNegative("eta", eta)
+      .InRange("snap_to_edge_px", snap_to_edge_px, 0.0, 5.0)
       .Nested("static_stereo", static_stereo)
       .Nested("temporal_stereo", temporal_stereo)
       .Nested("depth_refinement", depth_refinement)

@@ -69,11 +69,12 @@ std::atomic<bool> g_interrupted{false};  // Ctrl-C during a run: stop and write 
 extern "C" void OnInterrupt(int) { g_interrupted.store(true); }
 
 // The ESVO-like configuration (ESVO's newest-event selection of 10k points, static stereo only,
-// no IMU prior), so that the paper's comparisons run on the same data; later --set still apply.
+// no IMU prior, and none of aavio's additions to mapping), so that the paper's comparisons run on
+// the same data; later --set still apply.
 const std::vector<std::string> kEsvoOverrides = {
     "edge_sampling.mode=newest_events", "edge_sampling.num_points=10000",
     "mapping.max_points=10000", "mapping.temporal_stereo.enabled=false",
-    "imu.use_gyro_prior=false"};
+    "imu.use_gyro_prior=false", "mapping.snap_to_edge_px=0"};
 
 Status RunFull(RunOptions options, OpenedSequence& opened, Context& ctx) {
   if (options.config.preset.empty()) {
