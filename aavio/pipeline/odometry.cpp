@@ -1,7 +1,9 @@
 #include "aavio/pipeline/odometry.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <optional>
 
 namespace aavio::pipeline {
 namespace {
@@ -31,6 +33,24 @@ Odometry::Odometry(const geometry::StereoRig& rig, const OdometryConfig& config,
           1, static_cast<int>(std::lround(config.time_surface.rate_hz / config.mapping.rate_hz)))),
       run_mapping_(run_mapping) {
   tracker_.Reset(start_ns, T_world_start);
+}
+
+Odometry::~Odometry() {
+  if (pending_cycle_.valid()) pending_cycle_.wait();
+}
+
+// The finished cycle's map goes to tracking (with `wait`, after it finishes).
+Status Odometry::CollectCycle(OdometryTick* tick, bool wait) {
+  if (!pending_cycle_.valid()) return Status::Ok();
+  if (!wait && pending_cycle_.wait_for(std::chrono::seconds(0)) != std::future_status::ready)
+    return Status::Ok();
+  CycleResult result = pending_cycle_.get();
+  AAVIO_RETURN_IF_ERROR(result.status);
+  tick->mapped = true;
+  tick->mapping = result.report;
+  tick->map = result.map;
+  PublishToTracking(result.map);
+  return Status::Ok();
 }
 
 Status Odometry::Process(std::span<const events::Event> left,
@@ -65,6 +85,7 @@ Status Odometry::Tick(TimeNs t_ns) {
   tick.t_ns = t_ns;
   tick.representation = obs->timings;
   if (before_tick) before_tick(*obs);
+  AAVIO_RETURN_IF_ERROR(CollectCycle(&tick, /*wait=*/false));
 
   // The IMU samples around (previous tick, t]: keep one at or before the previous tick.
   while (imu_.size() > 2 && imu_[1].t_ns <= t_ns - tick_ns_)
@@ -100,13 +121,28 @@ Status Odometry::Tick(TimeNs t_ns) {
     if (ticks_ % ticks_per_cycle_ == 0) {
       const mapping::PosedObservation* partner = mapping::FindTemporalPartner(
           history_, tracked.T_world_cur, config_.mapping.temporal_stereo.min_translation_m);
-      AAVIO_RETURN_IF_ERROR(mapper_.Update(now, partner, &tick.mapping));
-      tick.mapped = true;
-      tick.map = mapper_.local_map();
-      PublishToTracking(tick.map);
+      if (!config_.pipeline.real_time) {
+        AAVIO_RETURN_IF_ERROR(mapper_.Update(now, partner, &tick.mapping));
+        tick.mapped = true;
+        tick.map = mapper_.local_map();
+        PublishToTracking(tick.map);
+      } else if (pending_cycle_.valid()) {
+        tick.mapping_skipped = true;  // the last cycle still runs: this one is dropped
+      } else {
+        // The observation and partner by value: history_ may drop the partner meanwhile.
+        std::optional<mapping::PosedObservation> partner_copy;
+        if (partner) partner_copy = *partner;
+        pending_cycle_ = std::async(std::launch::async, [this, now, partner_copy] {
+          CycleResult r;
+          r.status = mapper_.Update(now, partner_copy ? &*partner_copy : nullptr, &r.report);
+          r.map = mapper_.local_map();
+          return r;
+        });
+      }
     }
   } else if (++lost_ticks_ >= config_.pipeline.max_lost_ticks) {
     // Lost for too long: forget the map; the next ticks bootstrap at the held pose.
+    if (pending_cycle_.valid()) pending_cycle_.get();  // a cycle of the old map: dropped
     mapper_.Reset();
     PublishToTracking(nullptr);
     tracker_.Reset(t_ns, tracked.T_world_cur);

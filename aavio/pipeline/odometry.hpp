@@ -18,6 +18,7 @@
 
 #include <deque>
 #include <functional>
+#include <future>
 #include <span>
 #include <vector>
 
@@ -42,6 +43,7 @@ struct OdometryTick {
   bool mapped = false;       ///< a mapping cycle ran on this tick
   bool bootstrap = false;    ///< ... and it was an SGM (re-)initialisation that succeeded
   bool reinitialised = false;  ///< tracking was lost too long: mapping was reset here
+  bool mapping_skipped = false;  ///< real-time mode: a cycle was due but the last still ran
   mapping::MappingCycleReport mapping;  ///< of the cycle, if one ran (not for bootstraps)
   mapping::LocalMapPtr map;             ///< the map published on this tick, if any
   Eigen::Vector3d gyro_bias = Eigen::Vector3d::Zero();
@@ -66,10 +68,18 @@ class Odometry {
     tracker_.SetMap(std::move(map));
   }
   std::int64_t ticks() const { return ticks_; }
+  ~Odometry();
 
  private:
   Status Tick(TimeNs t_ns);
   void PublishToTracking(const mapping::LocalMapPtr& map);
+  // Real-time mode: a mapping cycle on its own thread, and its result.
+  struct CycleResult {
+    Status status = Status::Ok();
+    mapping::MappingCycleReport report;
+    mapping::LocalMapPtr map;
+  };
+  Status CollectCycle(OdometryTick* tick, bool wait);
 
   OdometryConfig config_;
   geometry::StereoRectification rectification_;
@@ -82,6 +92,7 @@ class Odometry {
   TimeNs tick_ns_, next_tick_ns_;
   int ticks_per_cycle_;
   bool run_mapping_;
+  std::future<CycleResult> pending_cycle_;
   std::int64_t ticks_ = 0;
   int lost_ticks_ = 0;
 };

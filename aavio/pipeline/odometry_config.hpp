@@ -18,6 +18,11 @@ struct PipelineConfig {
   int max_buffered_events = 5'000'000;  ///< per camera, oldest dropped beyond ([ESVO] 5e6)
   /// Consecutive lost ticks after which mapping re-initialises (SGM) at the held pose (aavio)
   int max_lost_ticks = 5;
+  /// Real-time mode (aavio): mapping cycles run on their own thread while tracking goes on; a
+  /// cycle due while the previous one still runs is skipped (the newest observation wins), and a
+  /// finished map reaches tracking at the next tick. Faster on 2+ cores, but which ticks are mapped
+  /// depends on the machine: not bit-reproducible. Off: synchronous and deterministic.
+  bool real_time = false;
 
   template <typename V>
   void VisitFields(V&& v) {
@@ -25,6 +30,7 @@ struct PipelineConfig {
     v("num_threads", num_threads);
     v("max_buffered_events", max_buffered_events);
     v("max_lost_ticks", max_lost_ticks);
+    v("real_time", real_time);
   }
   Status Validate() const;
 };

@@ -347,6 +347,17 @@ TEST(Cli, RunOdometryWritesItsOutputsAndIsDeterministic) {
     ASSERT_TRUE(std::filesystem::exists(path)) << png;
     EXPECT_GT(std::filesystem::file_size(path), 5000u) << png;
   }
+  // Real-time mode: mapping on its own thread; it runs, maps and tracks (not bit-reproducible).
+  const std::string rt = (dir / "rt").string();
+  r = RunAavio({"run", seq, "--out", rt, "--quiet", "--real-time"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  std::ifstream rt_in(std::filesystem::path(rt) / "summary.json");
+  const nlohmann::json rj = nlohmann::json::parse(rt_in);
+  EXPECT_TRUE(rj["real_time_mode"].get<bool>());
+  EXPECT_GT(rj["status"]["ok"].get<int>(), 0);
+  EXPECT_GT(rj["stages"]["mapping_total"]["calls"].get<int>(), 0);
+  EXPECT_EQ(ReadAll(std::filesystem::path(rt) / "stamped_traj_estimate.txt").find("nan"),
+            std::string::npos);
   // Both isolation modes at once: a usage error.
   r = RunAavio({"run", seq, "--out", two, "--gt-map", "--gt-poses"});
   EXPECT_EQ(r.code, kExitUsage);

@@ -131,7 +131,7 @@ Expected<OdometryRunResult> RunOdometry(const OdometryRunRequest& request, Conte
   std::vector<geometry::StampedPose> trajectory;
   pipeline::StageTimings timings;
   std::map<std::string, int> status_counts, lost_reasons;
-  int bootstraps = 0, reinitialisations = 0, cycles = 0;
+  int bootstraps = 0, reinitialisations = 0, cycles = 0, skipped_cycles = 0;
   std::ofstream csv(fs::path(request.out_dir) / "timings.csv");
   csv << "t_s,status,time_surface_ms,aa_ms,sampling_ms,tracking_ms,iterations,mapping_ms,"
          "map_points,lost_reason\n";
@@ -158,6 +158,7 @@ Expected<OdometryRunResult> RunOdometry(const OdometryRunRequest& request, Conte
     if (t.status != tracking::TrackingStatus::kNoMap)
       timings.Add("tracking", t.tracking_ms, t.registration_iterations);
     bootstraps += t.bootstrap;
+    skipped_cycles += t.mapping_skipped;
     reinitialisations += t.reinitialised;
     double mapping_ms = 0.0;
     if (t.mapped && !t.bootstrap) {
@@ -269,6 +270,8 @@ Expected<OdometryRunResult> RunOdometry(const OdometryRunRequest& request, Conte
   summary["lost_reasons"] = lost_reasons;
   summary["bootstraps"] = bootstraps;
   summary["reinitialisations"] = reinitialisations;
+  summary["real_time_mode"] = config.pipeline.real_time;
+  summary["mapping_cycles_skipped"] = skipped_cycles;
   summary["map_points_global"] = cloud.points().size();
   const auto [rss_mb, peak_mb] = MemoryMb();
   summary["peak_rss_mb"] = peak_mb;

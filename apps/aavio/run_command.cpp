@@ -41,6 +41,7 @@ struct RunOptions {
   bool gt_poses = false;
   bool gt_map = false;
   bool esvo = false;
+  bool real_time = false;
   bool quiet = false;
   double start_s = 0.0, duration_s = 0.0;
   ConfigSources config;
@@ -90,6 +91,7 @@ Status RunFull(RunOptions options, OpenedSequence& opened, Context& ctx) {
     options.config.overrides.insert(options.config.overrides.begin(), kEsvoOverrides.begin(),
                                     kEsvoOverrides.end());
   }
+  if (options.real_time) options.config.overrides.push_back("pipeline.real_time=true");
   Expected<pipeline::OdometryConfig> config = ResolveOdometryConfig(options.config);
   if (!config) return config.status();
   io::SequenceReader* reader = opened.reader.get();
@@ -279,6 +281,8 @@ void RegisterRun(CLI::App& app, Context& ctx) {
   sub->add_flag("--esvo", options->esvo,
                 "ESVO-like mode: newest-event selection of 10k points, static stereo only, no "
                 "IMU prior");
+  sub->add_flag("--real-time", options->real_time,
+                "Mapping on its own thread (pipeline.real_time): faster, not bit-reproducible");
   sub->add_flag("--gt-map", options->gt_map,
                 "Tracking only, against maps built from the sequence's ground-truth depth");
   sub->add_option("--start", options->start_s, "Seconds to skip")->check(CLI::NonNegativeNumber);
