@@ -111,21 +111,18 @@ RegistrationResult Registration::Solve(const RegistrationImages& images,
   };
   result.initial_cost = mean_cost(result.T_ref_cur, &result.valid_fraction);
   double lambda = 1e-4;
-  bool small_reduction = false;
-  for (int iteration = 0; iteration < config_.max_iterations && !small_reduction; ++iteration) {
-    const int b = iteration % batches;
-    std::iota(indices.begin(), indices.end(), b * batch);
-    Linearize(images, result.T_ref_cur, indices, &r, &J, &valid);
-    const double cost = r.squaredNorm() / batch;
+  // One LM step on the points `idx` (damping adapted across steps, as the reference): true if a
+  // step was accepted; `small` when its cost reduction was below the tolerance.
+  auto lm_step = [&](const std::vector<int>& idx, bool* small, Eigen::Matrix<double, 6, 1>* step) {
+    const double count = static_cast<double>(idx.size());
+    Linearize(images, result.T_ref_cur, idx, &r, &J, &valid);
+    const double cost = r.squaredNorm() / count;
     const Eigen::Matrix<double, 6, 6> H = J.transpose() * J;
     const Eigen::Matrix<double, 6, 1> g = J.transpose() * r;
-    // One LM step on this batch (the damping reset per batch, as the reference).
-    bool accepted = false;
-    Eigen::Matrix<double, 6, 1> theta = Eigen::Matrix<double, 6, 1>::Zero();
-    for (int attempt = 0; attempt < 6 && !accepted; ++attempt) {
+    for (int attempt = 0; attempt < 6; ++attempt) {
       Eigen::Matrix<double, 6, 6> A = H;
       A.diagonal() += lambda * H.diagonal() + Eigen::Matrix<double, 6, 1>::Constant(1e-9);
-      theta = A.ldlt().solve(-g);
+      Eigen::Matrix<double, 6, 1> theta = A.ldlt().solve(-g);
       // A step larger than a tick's plausible motion comes from a degenerate batch (few edges,
       // flat surface): shorten it rather than jump (Cayley c ≈ θ/2).
       const double scale = std::max({1.0, theta.head<3>().norm() / kMaxCayleyStep,
@@ -133,22 +130,40 @@ RegistrationResult Registration::Solve(const RegistrationImages& images,
       theta /= scale;
       const geometry::RigidTransform trial = ApplyIncrement(result.T_ref_cur, theta);
       int trial_valid = 0;
-      Linearize(images, trial, indices, &r_trial, nullptr, &trial_valid);
-      const double trial_cost = r_trial.squaredNorm() / batch;
+      Linearize(images, trial, idx, &r_trial, nullptr, &trial_valid);
+      const double trial_cost = r_trial.squaredNorm() / count;
       if (trial_cost < cost) {
         result.T_ref_cur = trial;
         lambda = std::max(1e-7, lambda * 0.1);
-        accepted = true;
-        small_reduction = (cost - trial_cost) / cost < config_.function_tolerance;
-      } else {
-        lambda *= 10.0;
+        *small = (cost - trial_cost) / cost < config_.function_tolerance;
+        *step = theta;
+        return true;
       }
+      lambda *= 10.0;
     }
+    return false;
+  };
+  // Mini-batches (the reference): consecutive batches of the shuffled points.
+  bool small_reduction = false;
+  Eigen::Matrix<double, 6, 1> theta = Eigen::Matrix<double, 6, 1>::Zero();
+  for (int iteration = 0; iteration < config_.max_iterations && !small_reduction; ++iteration) {
+    const int b = iteration % batches;
+    std::iota(indices.begin(), indices.end(), b * batch);
+    const bool accepted = lm_step(indices, &small_reduction, &theta);
     result.iterations = iteration + 1;
     if (!accepted) {
       if (batches == 1) break;  // no progress possible on the only batch
     } else if (theta.norm() < config_.step_tolerance * 1e-2) {
       break;
+    }
+  }
+  // Polish (aavio): a few steps on all points, so that the last batch's sampling noise does not
+  // stay in the pose.
+  if (batches > 1) {
+    bool small = false;
+    for (int k = 0; k < config_.polish_iterations && !small; ++k) {
+      ++result.iterations;
+      if (!lm_step(all, &small, &theta)) break;
     }
   }
   result.final_cost = mean_cost(result.T_ref_cur, nullptr);

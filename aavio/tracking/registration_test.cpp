@@ -76,30 +76,40 @@ TEST(Registration, ConvergesFromTwoDegreesAndFiveCentimetres) {
   truth.t = {0.03, 0.01, 0.05};
   const Images images = Render(map, truth);
   const RegistrationImages input{images.negative, images.du, images.dv, images.valid};
-  TrackingConfig config;
-  config.max_iterations = 20;  // ESVO2 rpg; with the default 10: see the note
-  std::mt19937_64 rng(11);
-  std::uniform_real_distribution<double> unit(-1.0, 1.0);
-  int converged = 0;
-  const int trials = 200;
-  double worst_angle = 0.0;
-  for (int trial = 0; trial < trials; ++trial) {
-    // A perturbation of 2° about a random axis and 5 cm in a random direction.
-    Eigen::Vector3d axis(unit(rng), unit(rng), unit(rng)), dir(unit(rng), unit(rng), unit(rng));
-    geometry::RigidTransform start = truth;
-    start.R = geometry::ExpSO3(axis.normalized() * (2.0 * M_PI / 180.0)) * truth.R;
-    start.t = truth.t + 0.05 * dir.normalized();
-    const Registration reg(map, kCamera, config, static_cast<std::uint64_t>(trial));
-    const RegistrationResult result = reg.Solve(input, start);
-    const double angle =
-        geometry::LogSO3(result.T_ref_cur.R * truth.R.transpose()).norm() * 180 / M_PI;
-    const double offset = (result.T_ref_cur.t - truth.t).norm();
-    worst_angle = std::max(worst_angle, angle);
-    if (angle < 0.2 && offset < 0.01) ++converged;
+  // Mini-batches of 300 (the reference) need 20 iterations (ESVO2 rpg; 158 of 200 with 10, 192
+  // with 10 + 3 on all points); the presets' 20 + 3 on all points. (Every step on all points
+  // stalls half the time: the batches' randomness is what gets out of shallow minima.)
+  for (const auto& [batch_size, iterations, polish] :
+       {std::tuple{300, 20, 0}, std::tuple{300, 20, 3}}) {
+    TrackingConfig config;
+    config.batch_size = batch_size;
+    config.max_iterations = iterations;
+    config.polish_iterations = polish;
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    int converged = 0;
+    const int trials = 200;
+    double worst_angle = 0.0;
+    for (int trial = 0; trial < trials; ++trial) {
+      // A perturbation of 2° about a random axis and 5 cm in a random direction.
+      Eigen::Vector3d axis(unit(rng), unit(rng), unit(rng)), dir(unit(rng), unit(rng), unit(rng));
+      geometry::RigidTransform start = truth;
+      start.R = geometry::ExpSO3(axis.normalized() * (2.0 * M_PI / 180.0)) * truth.R;
+      start.t = truth.t + 0.05 * dir.normalized();
+      const Registration reg(map, kCamera, config, static_cast<std::uint64_t>(trial));
+      const RegistrationResult result = reg.Solve(input, start);
+      const double angle =
+          geometry::LogSO3(result.T_ref_cur.R * truth.R.transpose()).norm() * 180 / M_PI;
+      const double offset = (result.T_ref_cur.t - truth.t).norm();
+      worst_angle = std::max(worst_angle, angle);
+      if (angle < 0.2 && offset < 0.01) ++converged;
+    }
+    EXPECT_GE(converged, trials * 99 / 100)
+        << "batch " << batch_size << ", worst angle " << worst_angle << "°";
+    std::printf("registration from ±2° / ±5 cm, batches of %d, %d iterations + %d on all: %d of "
+                "%d trials within 0.2° and 1 cm\n",
+                batch_size, iterations, polish, converged, trials);
   }
-  EXPECT_GE(converged, trials * 99 / 100) << "worst angle " << worst_angle << "°";
-  std::printf("registration from ±2° / ±5 cm: %d of %d trials within 0.2° and 1 cm\n", converged,
-              trials);
 }
 
 }  // namespace

@@ -10,6 +10,7 @@ Status TrackingConfig::Validate() const {
                "must not exceed max_points (" + FieldChecker::Num(max_points) + ")")
       .InRange("min_map_points", min_map_points, 1, 1000000)
       .InRange("max_iterations", max_iterations, 1, 1000)
+      .InRange("polish_iterations", polish_iterations, 0, 100)
       .Positive("huber_threshold", huber_threshold)
       .Positive("function_tolerance", function_tolerance)
       .Positive("step_tolerance", step_tolerance)

@@ -11,6 +11,8 @@ struct TrackingConfig {
   int batch_size = 300;              ///< points per LM step (≥ max_points: all points, plain LM)
   int min_map_points = 300;          ///< fewer map points than this: no tracking (kNoMap)
   int max_iterations = 10;           ///< LM steps per tick ([ICRA], [ESVO]; ESVO2 rpg 20)
+  /// aavio: LM steps on all points after the mini-batches (0 = the reference)
+  int polish_iterations = 0;
   double huber_threshold = 50.0;     ///< robust loss threshold [TS levels]
   double function_tolerance = 1e-3;  ///< stop on relative cost reduction below it
   double step_tolerance = 1e-3;      ///< stop on relative step below it
@@ -29,6 +31,7 @@ struct TrackingConfig {
     v("batch_size", batch_size);
     v("min_map_points", min_map_points);
     v("max_iterations", max_iterations);
+    v("polish_iterations", polish_iterations);
     v("huber_threshold", huber_threshold);
     v("function_tolerance", function_tolerance);
     v("step_tolerance", step_tolerance);
