@@ -136,19 +136,26 @@ void DepthMap::Regularize(const RegularizationConfig& config, double compatibili
   const std::vector<std::int32_t> index_before = index_;
   const std::vector<DepthPoint> points_before = points_;
   const int w = stereo_.width, h = stereo_.height, r = config.radius;
+  // Compatible(p, q) = |ρp − ρq| < k·σp or < k·σq: each point's k·σ once, not per pair.
+  std::vector<double> reach(points_before.size(), 0.0);
+  for (std::size_t slot = 0; slot < points_before.size(); ++slot)
+    if (Live(slot)) reach[slot] = compatibility_sigmas * std::sqrt(points_before[slot].variance());
+  std::vector<const DepthPoint*> close;
   for (std::size_t slot = 0; slot < points_before.size(); ++slot) {
     if (!Live(slot)) continue;
     const DepthPoint& p = points_before[slot];
     const int x = cell_of_[slot] % w, y = cell_of_[slot] / w;
     int neighbours = 0;
-    std::vector<const DepthPoint*> close;
+    close.clear();
     for (int yy = std::max(0, y - r); yy <= std::min(h - 1, y + r); ++yy) {
+      const std::int32_t* row = index_before.data() + static_cast<std::size_t>(yy) * w;
       for (int xx = std::max(0, x - r); xx <= std::min(w - 1, x + r); ++xx) {
-        const std::int32_t q_slot = index_before[static_cast<std::size_t>(yy) * w + xx];
+        const std::int32_t q_slot = row[xx];
         if (q_slot < 0 || (xx == x && yy == y)) continue;
         const DepthPoint& q = points_before[static_cast<std::size_t>(q_slot)];
         ++neighbours;
-        if (Compatible(p, q, compatibility_sigmas)) close.push_back(&q);
+        const double d = std::abs(p.rho - q.rho);
+        if (d < reach[slot] || d < reach[static_cast<std::size_t>(q_slot)]) close.push_back(&q);
       }
     }
     if (neighbours <= config.min_neighbours) continue;
@@ -156,10 +163,15 @@ void DepthMap::Regularize(const RegularizationConfig& config, double compatibili
       Remove(static_cast<std::int32_t>(slot));  // an outlier among many neighbours
       continue;
     }
-    DepthPoint fused = p;
-    for (const DepthPoint* q : close)
-      fused = FuseStudentT(fused, *q);
-    points_[slot].rho = fused.rho;
+    // FuseStudentT over the compatible neighbours, keeping only what ρ depends on.
+    double rho = p.rho, s2 = p.s2, nu = p.nu;
+    for (const DepthPoint* q : close) {
+      const double sum = s2 + q->s2, d = rho - q->rho, nu_min = std::min(nu, q->nu);
+      rho = (q->s2 * rho + s2 * q->rho) / sum;
+      s2 = (nu_min + d * d / sum) / (nu_min + 1.0) * (s2 * q->s2 / sum);
+      nu = nu_min + 1.0;
+    }
+    points_[slot].rho = rho;
   }
 }
 
