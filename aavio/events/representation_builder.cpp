@@ -87,7 +87,7 @@ Status RepresentationBuilder::Consume(CameraState& camera, TimeNs t_ns, bool kee
   return Status::Ok();
 }
 
-Status RepresentationBuilder::Build(TimeNs t_ns, Observation* out) {
+Status RepresentationBuilder::Build(TimeNs t_ns, Observation* out, bool with_right_ts) {
   if (t_ns <= last_tick_ns_) {
     return InvalidArgument("ticks must increase: " + FormatSecondsNs(t_ns) + " s after " +
                            FormatSecondsNs(last_tick_ns_) + " s");
@@ -101,6 +101,10 @@ Status RepresentationBuilder::Build(TimeNs t_ns, Observation* out) {
   AAVIO_RETURN_IF_ERROR(Consume(right_, t_ns, false));
   const double decay_ms = config_.time_surface.decay_ms;
   for (CameraState* camera : {&left_, &right_}) {
+    if (camera == &right_ && !with_right_ts) {
+      out->ts_right.release();
+      continue;
+    }
     cv::Mat& ts = camera == &left_ ? out->ts_left : out->ts_right;
     if (padded_.empty()) padded_ = camera->rectifier.MakePadded();
     cv::Mat interior = ImageRectifier::PaddedInterior(padded_);

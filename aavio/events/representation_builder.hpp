@@ -37,7 +37,9 @@ class RepresentationBuilder {
   Status AddEvents(Camera camera, std::span<const Event> events);
 
   /// The observation at t_ns: every event up to t_ns must have been added. Ticks increase.
-  Status Build(TimeNs t_ns, Observation* out);
+  /// Without `with_right_ts` the right time surface is not drawn (ts_right left empty; its
+  /// events are still taken in): only mapping needs it, tracking ticks do not.
+  Status Build(TimeNs t_ns, Observation* out, bool with_right_ts = true);
 
  private:
   struct CameraState {

@@ -98,6 +98,32 @@ TEST(RepresentationBuilder, SameEventsSameObservationsTickAfterTick) {
   }
 }
 
+// Ticks without the right time surface (tracking-only ticks) change nothing else, and the right
+// surface of a later tick is the same as if every tick had drawn it.
+TEST(RepresentationBuilder, SkippingTheRightTimeSurfaceChangesNothingElse) {
+  const Streams s;
+  RepresentationConfig config;
+  config.edge_sampling.num_points = 200;
+  RepresentationBuilder every(Identity(), kW, kH, config, 0), some(Identity(), kW, kH, config, 0);
+  for (RepresentationBuilder* b : {&every, &some}) {
+    ASSERT_TRUE(b->AddEvents(Camera::kLeft, s.left).ok());
+    ASSERT_TRUE(b->AddEvents(Camera::kRight, s.right).ok());
+  }
+  for (TimeNs t = 10 * kNsPerMs; t <= 100 * kNsPerMs; t += 10 * kNsPerMs) {
+    const bool right = t % (50 * kNsPerMs) == 0;
+    Observation a, b;
+    ASSERT_TRUE(every.Build(t, &a).ok());
+    ASSERT_TRUE(some.Build(t, &b, right).ok());
+    EXPECT_TRUE(Same(a.ts_left, b.ts_left) && Same(a.grad_u, b.grad_u) && Same(a.aa_map, b.aa_map));
+    EXPECT_EQ(a.samples.size(), b.samples.size());
+    if (right) {
+      EXPECT_TRUE(Same(a.ts_right, b.ts_right)) << t;
+    } else {
+      EXPECT_TRUE(b.ts_right.empty());
+    }
+  }
+}
+
 TEST(RepresentationBuilder, RefusesDisorder) {
   RepresentationBuilder builder(Identity(), kW, kH, {}, 0);
   const std::vector<Event> backwards = {{20, 1, 1, 1}, {10, 1, 1, 1}};

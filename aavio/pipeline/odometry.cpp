@@ -79,7 +79,10 @@ void Odometry::PublishToTracking(const mapping::LocalMapPtr& map) {
 
 Status Odometry::Tick(TimeNs t_ns) {
   auto obs = std::make_shared<events::Observation>();
-  AAVIO_RETURN_IF_ERROR(builder_.Build(t_ns, obs.get()));
+  // The right time surface only where mapping may run: a bootstrap, or a mapping cycle's tick.
+  const bool maps_here =
+      run_mapping_ && (!mapper_.initialized() || (ticks_ + 1) % ticks_per_cycle_ == 0);
+  AAVIO_RETURN_IF_ERROR(builder_.Build(t_ns, obs.get(), maps_here));
   ++ticks_;
   OdometryTick tick;
   tick.t_ns = t_ns;
