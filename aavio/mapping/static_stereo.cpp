@@ -55,9 +55,14 @@ bool MatchOne(const StaticStereoInput& in, const Eigen::Vector2f& x, const Recti
   int best_d = -1;
   thread_local std::vector<double> costs;
   if (step == 1) {
-    costs.resize(static_cast<std::size_t>(d_hi - d_lo + 1));
+    // All disparities at once: position j of the row search is disparity d_hi − j.
+    const int count = d_hi - d_lo + 1;
+    thread_local std::vector<double> along_row;
+    along_row.resize(static_cast<std::size_t>(count));
+    ZnccCostsAlongRow(patch, right_row + (u - d_hi - hw), stride, count, along_row.data());
+    costs.resize(static_cast<std::size_t>(count));
     for (int d = d_lo; d <= d_hi; ++d) {
-      const double e = cost(d);
+      const double e = along_row[static_cast<std::size_t>(d_hi - d)];
       costs[static_cast<std::size_t>(d - d_lo)] = e;
       if (e < best) best = e, best_d = d;
     }

@@ -27,6 +27,26 @@ TEST(Zncc, CostOfEqualOppositeAndFlatPatches) {
   EXPECT_DOUBLE_EQ(ZnccCost(p, flat.ptr<float>(), static_cast<int>(flat.step1())), 0.5);
 }
 
+TEST(Zncc, RowSearchEqualsOneCostPerPosition) {
+  const cv::Mat image = testing::Texture(160, 40, 5);
+  const int stride = static_cast<int>(image.step1());
+  NormalizedPatch p;
+  ASSERT_TRUE(PreparePatch(image.ptr<float>(12) + 90, stride, 7, 15, &p));
+  // Include a flat stretch (cost 0.5) and the patch's own position (cost 0).
+  cv::Mat band = image.clone();
+  band(cv::Rect(0, 12, 30, 7)).setTo(40.0f);
+  const int count = 120;
+  std::vector<double> costs(count);
+  ZnccCostsAlongRow(p, band.ptr<float>(12) + 5, stride, count, costs.data());
+  for (int j = 0; j < count; ++j) {
+    SCOPED_TRACE(j);
+    EXPECT_NEAR(costs[static_cast<std::size_t>(j)], ZnccCost(p, band.ptr<float>(12) + 5 + j, stride),
+                2e-5);
+  }
+  EXPECT_DOUBLE_EQ(costs[0], 0.5);
+  EXPECT_NEAR(costs[85], 0.0, 1e-6);
+}
+
 TEST(StaticStereo, FindsTheShiftOfATexture) {
   const RectifiedStereo stereo = testing::SmallStereo();
   const cv::Mat left = testing::Texture(160, 120, 2);
