@@ -97,21 +97,26 @@ class Residual {
 };
 
 struct Evaluation {
-  float weighted[kMaxPatch];  // √w r
-  float weights[kMaxPatch];
-  double cost = 0.0;  // Σ w r²
+  float weighted[kMaxPatch];      // √w r
+  float sqrt_weights[kMaxPatch];  // √w
+  double cost = 0.0;              // Σ w r²
 };
 
-// Student-t weights of residuals `raw` with the scale s2 (fixed within an LM iteration).
+// Student-t weights of residuals `raw` with the scale s2 (fixed within an LM iteration); the
+// weights in float (they only steer the step), the cost summed in double.
 void Weigh(const float* raw, int n, double nu, double s2, Evaluation* e) {
-  e->cost = 0.0;
+  const float nu1 = static_cast<float>(nu + 1.0), nu_f = static_cast<float>(nu),
+              inv_s2 = static_cast<float>(1.0 / s2);
+  double cost = 0.0;
   for (int k = 0; k < n; ++k) {
-    const double rk = raw[k];
-    const double w = (nu + 1.0) / (nu + rk * rk / s2);
-    e->weights[k] = static_cast<float>(w);
-    e->weighted[k] = static_cast<float>(std::sqrt(w) * rk);
-    e->cost += w * rk * rk;
+    const float rk = raw[k];
+    const float w = nu1 / (nu_f + rk * rk * inv_s2);
+    const float sw = std::sqrt(w);
+    e->sqrt_weights[k] = sw;
+    e->weighted[k] = sw * rk;
+    cost += static_cast<double>(w * rk * rk);
   }
+  e->cost = cost;
 }
 
 void Evaluate(const Residual& f, double rho, double nu, double s2, Evaluation* e, float* raw) {
@@ -125,15 +130,15 @@ double JacobianNorm2(const Residual& f, double rho, double h, const Evaluation& 
   f(rho + h, r);
   double jtj = 0.0;
   *jtr = 0.0;
+  double jtr_h = 0.0;  // Σ (h·j) base, divided by h once at the end
   for (int k = 0; k < f.size(); ++k) {
-    const double shifted =
-        std::sqrt(static_cast<double>(at.weights[k])) * static_cast<double>(r[k]);
-    const double base = at.weighted[k];
-    const double j = (shifted - base) / h;
-    jtj += j * j;
-    *jtr += j * base;
+    const float base = at.weighted[k];
+    const float dj = at.sqrt_weights[k] * r[k] - base;  // h·j
+    jtj += static_cast<double>(dj * dj);
+    jtr_h += static_cast<double>(dj * base);
   }
-  return jtj;
+  *jtr = jtr_h / h;
+  return jtj / (h * h);
 }
 
 bool RefineOne(const RefinementInput& in, const Match& m, const RectifiedStereo& stereo,
