@@ -9,6 +9,7 @@
 #include <limits>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "aavio/common/status.hpp"
@@ -61,7 +62,15 @@ class ReorderBuffer {
   explicit ReorderBuffer(TimeNs max_reorder_ns) : max_reorder_ns_(max_reorder_ns) {}
 
   /// Adds an element; `where` describes its position for the error message.
-  Status Push(const T& element, const std::string& where_if_error);
+  Status Push(const T& element, std::string_view where_if_error) {
+    // The common case inline: in time order after everything pushed and released so far.
+    if (has_newest_ && element.t_ns >= newest_ns_ && element.t_ns >= released_until_ns_) {
+      newest_ns_ = element.t_ns;
+      pending_.push_back(element);
+      return Status::Ok();
+    }
+    return PushOutOfOrder(element, where_if_error);
+  }
   /// Everything strictly older than t_end_ns is final once an element at or after
   /// t_end_ns + max_reorder_ns has been pushed (or the source is exhausted).
   bool CanRelease(TimeNs t_end_ns) const {
@@ -75,6 +84,8 @@ class ReorderBuffer {
   std::size_t size() const { return pending_.size() - begin_; }  ///< held, not yet released
 
  private:
+  Status PushOutOfOrder(const T& element, std::string_view where_if_error);
+
   TimeNs max_reorder_ns_;
   std::vector<T> pending_;
   std::size_t begin_ = 0;  // pending_[begin_, end) are held
