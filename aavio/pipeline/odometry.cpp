@@ -56,8 +56,11 @@ Status Odometry::CollectCycle(OdometryTick* tick, bool wait) {
 Status Odometry::Process(std::span<const events::Event> left,
                          std::span<const events::Event> right,
                          std::span<const imu::ImuSample> imu, TimeNs t_end_ns) {
+  const auto start = std::chrono::steady_clock::now();
   AAVIO_RETURN_IF_ERROR(builder_.AddEvents(events::Camera::kLeft, left));
   AAVIO_RETURN_IF_ERROR(builder_.AddEvents(events::Camera::kRight, right));
+  last_insertion_ms_ =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   imu_.insert(imu_.end(), imu.begin(), imu.end());
   while (next_tick_ns_ < t_end_ns) {
     AAVIO_RETURN_IF_ERROR(Tick(next_tick_ns_));
@@ -88,7 +91,16 @@ Status Odometry::Tick(TimeNs t_ns) {
   tick.t_ns = t_ns;
   tick.representation = obs->timings;
   if (before_tick) before_tick(*obs);
-  AAVIO_RETURN_IF_ERROR(CollectCycle(&tick, /*wait=*/false));
+  if (config_.pipeline.real_time) {
+    AAVIO_RETURN_IF_ERROR(CollectCycle(&tick, /*wait=*/false));
+  } else if (pending_cycle_.valid() && ticks_ - pending_cycle_tick_ >= ticks_per_cycle_) {
+    // Concurrent mapping: the cycle started one cycle ago reaches tracking now, however long
+    // it took in wall time.
+    const auto start = std::chrono::steady_clock::now();
+    AAVIO_RETURN_IF_ERROR(CollectCycle(&tick, /*wait=*/true));
+    tick.mapping_wait_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  }
 
   // The IMU samples around (previous tick, t]: keep one at or before the previous tick.
   while (imu_.size() > 2 && imu_[1].t_ns <= t_ns - tick_ns_)
@@ -124,7 +136,8 @@ Status Odometry::Tick(TimeNs t_ns) {
     if (ticks_ % ticks_per_cycle_ == 0) {
       const mapping::PosedObservation* partner = mapping::FindTemporalPartner(
           history_, tracked.T_world_cur, config_.mapping.temporal_stereo.min_translation_m);
-      if (!config_.pipeline.real_time) {
+      const bool on_thread = config_.pipeline.real_time || config_.pipeline.concurrent_mapping;
+      if (!on_thread) {
         AAVIO_RETURN_IF_ERROR(mapper_.Update(now, partner, &tick.mapping));
         tick.mapped = true;
         tick.map = mapper_.local_map();
@@ -135,6 +148,7 @@ Status Odometry::Tick(TimeNs t_ns) {
         // The observation and partner by value: history_ may drop the partner meanwhile.
         std::optional<mapping::PosedObservation> partner_copy;
         if (partner) partner_copy = *partner;
+        pending_cycle_tick_ = ticks_;
         pending_cycle_ = std::async(std::launch::async, [this, now, partner_copy] {
           CycleResult r;
           r.status = mapper_.Update(now, partner_copy ? &*partner_copy : nullptr, &r.report);

@@ -8,6 +8,10 @@
 /// rate_hz/mapping.rate_hz ticks, map on that same observation at its tracked pose (static +
 /// temporal stereo, fusion) and hand the new map to tracking — the reference's chain, where
 /// mapping uses the newest observation with a known pose, without its wall-clock waits.
+/// With `pipeline.concurrent_mapping` (default) the cycle runs on a second thread while the
+/// following ticks are tracked, and its map reaches tracking at the next cycle's tick (a lag fixed
+/// in data time, so still deterministic); `pipeline.real_time` hands maps over whenever they are
+/// done and skips cycles while one runs (not deterministic).
 /// Before the first map, mapping bootstraps with SGM at the current pose (the start pose, turned
 /// by the gyroscope). After `pipeline.max_lost_ticks` lost ticks in a row, mapping is reset and
 /// bootstraps again at the held pose (the last good pose carried forward by the gyroscope),
@@ -44,6 +48,7 @@ struct OdometryTick {
   bool bootstrap = false;    ///< ... and it was an SGM (re-)initialisation that succeeded
   bool reinitialised = false;  ///< tracking was lost too long: mapping was reset here
   bool mapping_skipped = false;  ///< real-time mode: a cycle was due but the last still ran
+  double mapping_wait_ms = 0.0;  ///< concurrent mapping: waited this long for the last cycle
   mapping::MappingCycleReport mapping;  ///< of the cycle, if one ran (not for bootstraps)
   mapping::LocalMapPtr map;             ///< the map published on this tick, if any
   Eigen::Vector3d gyro_bias = Eigen::Vector3d::Zero();
@@ -68,12 +73,14 @@ class Odometry {
     tracker_.SetMap(std::move(map));
   }
   std::int64_t ticks() const { return ticks_; }
+  /// Wall time the last Process call spent adding events to the representations.
+  double last_insertion_ms() const { return last_insertion_ms_; }
   ~Odometry();
 
  private:
   Status Tick(TimeNs t_ns);
   void PublishToTracking(const mapping::LocalMapPtr& map);
-  // Real-time mode: a mapping cycle on its own thread, and its result.
+  // Concurrent and real-time modes: a mapping cycle on its own thread, and its result.
   struct CycleResult {
     Status status = Status::Ok();
     mapping::MappingCycleReport report;
@@ -93,8 +100,10 @@ class Odometry {
   int ticks_per_cycle_;
   bool run_mapping_;
   std::future<CycleResult> pending_cycle_;
+  std::int64_t pending_cycle_tick_ = 0;  // the tick the pending cycle was started on
   std::int64_t ticks_ = 0;
   int lost_ticks_ = 0;
+  double last_insertion_ms_ = 0.0;
 };
 
 }  // namespace aavio::pipeline

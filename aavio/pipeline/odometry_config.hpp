@@ -23,6 +23,12 @@ struct PipelineConfig {
   /// finished map reaches tracking at the next tick. Faster on 2+ cores, but which ticks are mapped
   /// depends on the machine: not bit-reproducible. Off: synchronous and deterministic.
   bool real_time = false;
+  /// Concurrent mapping (aavio; used when real_time is off): a mapping cycle runs on its own
+  /// thread while the ticks up to the next cycle are tracked, and its map reaches tracking at
+  /// that next cycle's tick, waiting for it if need be — the lag is fixed in data time, so the
+  /// output stays bit-reproducible. Off: each cycle runs inside its tick and its map is tracked
+  /// from the next tick on (one core does nothing while mapping runs on one thread).
+  bool concurrent_mapping = true;
 
   template <typename V>
   void VisitFields(V&& v) {
@@ -31,6 +37,7 @@ struct PipelineConfig {
     v("max_buffered_events", max_buffered_events);
     v("max_lost_ticks", max_lost_ticks);
     v("real_time", real_time);
+    v("concurrent_mapping", concurrent_mapping);
   }
   Status Validate() const;
 };

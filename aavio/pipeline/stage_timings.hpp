@@ -1,6 +1,7 @@
 #pragma once
 /// Per-stage wall times of a run, summarised as summary.json reports them (design.md §4):
-/// median and 95th percentile in ms, number of calls, median number of items per call.
+/// median and 95th percentile in ms, number of calls, median number of items per call, and the
+/// total (where the wall time of a run went).
 
 #include <map>
 #include <string>
@@ -12,6 +13,7 @@ struct StageSummary {
   double median_ms = 0.0, p95_ms = 0.0;
   std::size_t calls = 0;
   double median_items = 0.0;
+  double total_s = 0.0;
 };
 
 class StageTimings {

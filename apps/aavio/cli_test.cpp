@@ -305,11 +305,22 @@ TEST(Cli, RunOdometryWritesItsOutputsAndIsDeterministic) {
   EXPECT_GE(j["poses"].get<int>(), 140);
   EXPECT_GT(j["status"]["ok"].get<int>(), 0);
   EXPECT_GE(j["bootstraps"].get<int>(), 1);
-  for (const char* stage : {"time_surface", "tracking", "matching", "mapping_total"})
+  for (const char* stage : {"event_reading", "event_insertion", "time_surface", "tracking",
+                            "matching", "mapping_total"}) {
     EXPECT_TRUE(j["stages"].contains(stage)) << stage;
+    EXPECT_GT(j["stages"][stage]["total_s"].get<double>(), 0.0) << stage;
+  }
   EXPECT_GT(j["accuracy"]["pairs"].get<int>(), 100);
   EXPECT_GT(j["peak_rss_mb"].get<double>(), 0.0);
   EXPECT_GT(j["depth"]["points"].get<int>(), 0);
+  // Mapping inside each tick (no concurrent cycle): maps one tick earlier, so a different but
+  // equally valid trajectory.
+  r = RunAavio({"run", seq, "--out", two, "--quiet", "--set", "pipeline.concurrent_mapping=false"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  const std::string inline_traj = ReadAll(std::filesystem::path(two) / "stamped_traj_estimate.txt");
+  EXPECT_EQ(inline_traj.find("nan"), std::string::npos);
+  EXPECT_EQ(std::count(inline_traj.begin(), inline_traj.end(), '\n'),
+            std::count(traj.begin(), traj.end(), '\n'));
   // ESVO-like mode: its configuration is the one that ran.
   r = RunAavio({"run", seq, "--out", two, "--quiet", "--esvo"});
   ASSERT_EQ(r.code, kExitOk) << r.err;

@@ -244,7 +244,8 @@ Status Run(const RunOptions& options, Context& ctx) {
     summary["stages"][stage] = {{"median_ms", s.median_ms},
                                 {"p95_ms", s.p95_ms},
                                 {"calls", s.calls},
-                                {"median_items", s.median_items}};
+                                {"median_items", s.median_items},
+                                {"total_s", s.total_s}};
   }
   const eval::DepthErrorSummary depth = depth_all.Summary();
   if (!gt_depth.empty()) summary["depth"] = DepthJson(depth);
