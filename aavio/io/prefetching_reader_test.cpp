@@ -1,0 +1,95 @@
+#include "aavio/io/prefetching_reader.hpp"
+
+#include <gtest/gtest.h>
+
+#include "tests/event_fixtures.hpp"
+
+namespace aavio::io {
+namespace {
+
+using testing::Fixture;
+
+SequenceDescription DsecPair(const std::string& left_file, const std::string& right_file) {
+  SequenceDescription d;
+  d.name = "pair";
+  d.left = {SourceFormat::kDsecH5, Fixture(left_file), "", {}};
+  d.right = {SourceFormat::kDsecH5, Fixture(right_file), "", {}};
+  return d;
+}
+
+std::unique_ptr<SequenceReader> Open(const SequenceDescription& d) {
+  Expected<std::unique_ptr<SequenceReader>> reader = SequenceReader::Open(
+      d, {.packet_ns = 2 * kNsPerMs, .stream = {.width = 640, .height = 480}});
+  EXPECT_TRUE(reader.ok()) << reader.status().message();
+  return reader.ok() ? std::move(*reader) : nullptr;
+}
+
+bool SameEvents(const std::vector<events::Event>& a, const std::vector<events::Event>& b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (a[i].t_ns != b[i].t_ns || a[i].x != b[i].x || a[i].y != b[i].y ||
+        a[i].polarity != b[i].polarity) {
+      return false;
+    }
+  }
+  return true;
+}
+
+TEST(PrefetchingReader, DeliversExactlyThePacketsOfTheReader) {
+  const SequenceDescription d = DsecPair("dsec_blosc.h5", "uncompressed.h5");
+  auto direct = Open(d), behind = Open(d);
+  ASSERT_TRUE(direct && behind);
+  PrefetchingReader prefetching(behind.get(), 3);
+  std::size_t packets = 0, events = 0;
+  while (true) {
+    SensorPacket a, b;
+    Expected<bool> more_a = direct->Next(&a);
+    Expected<bool> more_b = prefetching.Next(&b);
+    ASSERT_TRUE(more_a.ok() && more_b.ok());
+    ASSERT_EQ(*more_a, *more_b) << "after " << packets << " packets";
+    if (!*more_a) break;
+    ASSERT_EQ(a.t_begin_ns, b.t_begin_ns);
+    ASSERT_EQ(a.t_end_ns, b.t_end_ns);
+    ASSERT_TRUE(SameEvents(a.left, b.left) && SameEvents(a.right, b.right)) << packets;
+    ++packets;
+    events += b.left.size() + b.right.size();
+  }
+  EXPECT_GT(packets, 10u);
+  EXPECT_GT(events, 1000u);
+  SensorPacket after;
+  Expected<bool> again = prefetching.Next(&after);  // the end stays the end
+  ASSERT_TRUE(again.ok());
+  EXPECT_FALSE(*again);
+}
+
+TEST(PrefetchingReader, PassesOnTheReadersErrorAfterTheGoodPackets) {
+  auto reader = Open(DsecPair("corrupt.h5", "dsec_blosc.h5"));
+  ASSERT_TRUE(reader);
+  PrefetchingReader prefetching(reader.get(), 2);
+  Status error;
+  for (int i = 0; i < 1'000'000 && error.ok(); ++i) {
+    SensorPacket packet;
+    Expected<bool> more = prefetching.Next(&packet);
+    if (!more.ok()) error = more.status();
+    else ASSERT_TRUE(*more) << "ended without the corruption's error";
+  }
+  EXPECT_NE(error.message().find("corrupt.h5"), std::string::npos) << error.message();
+  EXPECT_NE(error.message().find("truncated or corrupt"), std::string::npos) << error.message();
+  SensorPacket packet;
+  EXPECT_FALSE(prefetching.Next(&packet).ok());  // and stays
+}
+
+TEST(PrefetchingReader, StopsWhenDestroyedEarly) {
+  auto reader = Open(DsecPair("dsec_blosc.h5", "uncompressed.h5"));
+  ASSERT_TRUE(reader);
+  {
+    PrefetchingReader prefetching(reader.get(), 2);
+    SensorPacket packet;
+    ASSERT_TRUE(prefetching.Next(&packet).ok());
+  }  // joins its thread with packets still unread: no hang, no crash
+  SensorPacket packet;
+  EXPECT_TRUE(reader->Next(&packet).ok());  // the reader itself is still usable
+}
+
+}  // namespace
+}  // namespace aavio::io
