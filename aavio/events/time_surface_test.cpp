@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "aavio/events/test_events.hpp"
 #include "aavio/events/ts_images.hpp"
@@ -92,6 +93,19 @@ TEST(TsImages, NegativeTsVariantsAndGradients) {
     ramp.col(x).setTo(10 * x);
   SobelGradients(ramp, &du, &dv);
   EXPECT_FLOAT_EQ(du.at<float>(2, 2), 10.0f);
+}
+
+TEST(NegativeTs, IntegerGradientsEqualFloatSobelEverywhere) {
+  cv::Mat image(37, 53, CV_8UC1);
+  cv::RNG rng(7);
+  rng.fill(image, cv::RNG::UNIFORM, 0, 256);
+  cv::Mat du, dv, float_du, float_dv;
+  SobelGradients(image, &du, &dv);  // the integer path for CV_8UC1
+  cv::Sobel(image, float_du, CV_32F, 1, 0, 3, 1.0 / 8.0, 0.0, cv::BORDER_REFLECT_101);
+  cv::Sobel(image, float_dv, CV_32F, 0, 1, 3, 1.0 / 8.0, 0.0, cv::BORDER_REFLECT_101);
+  ASSERT_EQ(du.type(), CV_32FC1);
+  EXPECT_EQ(cv::norm(du, float_du, cv::NORM_INF), 0.0);  // borders included
+  EXPECT_EQ(cv::norm(dv, float_dv, cv::NORM_INF), 0.0);
 }
 
 }  // namespace

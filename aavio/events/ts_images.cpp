@@ -34,6 +34,15 @@ void NegativeTs(const cv::Mat& ts, const TimeSurfaceConfig& config, cv::Mat* out
 }
 
 void SobelGradients(const cv::Mat& image, cv::Mat* d_u, cv::Mat* d_v) {
+  if (image.type() == CV_8UC1) {
+    // Both derivatives in one integer pass, then scaled: k/8 is exact in float, so the same
+    // values as the float Sobel below at a third of its cost.
+    cv::Mat du16, dv16;
+    cv::spatialGradient(image, du16, dv16, 3, cv::BORDER_REFLECT_101);
+    du16.convertTo(*d_u, CV_32F, 1.0 / 8.0);
+    dv16.convertTo(*d_v, CV_32F, 1.0 / 8.0);
+    return;
+  }
   cv::Sobel(image, *d_u, CV_32F, 1, 0, 3, 1.0 / 8.0, 0.0, cv::BORDER_REFLECT_101);
   cv::Sobel(image, *d_v, CV_32F, 0, 1, 3, 1.0 / 8.0, 0.0, cv::BORDER_REFLECT_101);
 }

@@ -159,7 +159,7 @@ bool RefineOne(const RefinementInput& in, const Match& m, const RectifiedStereo&
   Evaluation buffers[2];  // the current evaluation and a trial, swapped on success
   int current = 0;
   Evaluation* e_ptr = &buffers[0];
-  Evaluate(f, rho, nu, s2, e_ptr, raw);
+  Weigh(raw, f.size(), nu, s2, e_ptr);  // scale_at left r(ρ) in raw
   double jtj = 0.0, jtr = 0.0;
   if (c.max_iterations == 0) {
     // ESVO2: ρ from matching, σ from one 5 % forward difference, ‖J‖ floored at 0.1.
@@ -190,8 +190,9 @@ bool RefineOne(const RefinementInput& in, const Match& m, const RectifiedStereo&
         lambda *= 10.0;
       }
       if (!improved || std::abs(step) < 1e-3 * rho) break;
-      // Re-estimate the scale where we are now (IRLS) and re-weigh (scale_at leaves r(ρ) in raw).
-      s2 = scale_at(rho);
+      // Re-estimate the scale where we are now (IRLS) and re-weigh; the accepted trial left r(ρ)
+      // in raw.
+      s2 = StudentTScale2(std::span<const float>(raw, n), nu, s2_t);
       Weigh(raw, f.size(), nu, s2, e_ptr);
     }
     jtj = JacobianNorm2(f, rho, std::max(1e-7, 1e-3 * rho), *e_ptr, &jtr);

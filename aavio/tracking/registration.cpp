@@ -13,16 +13,25 @@ namespace {
 constexpr double kMaxCayleyStep = 0.02;       // ≈ 2.3° per LM step
 constexpr double kMaxTranslationStep = 0.05;  // m per LM step
 
-// Bilinear value of a float or uint8 image at (u, v); the caller checks the bounds.
-template <typename T>
-double Bilinear(const cv::Mat& image, double u, double v) {
+// Bilinear interpolation weights at (u, v), shared by the images sampled there; the caller
+// checks the bounds.
+struct BilinearWeights {
+  int x0, y0;
+  double w00, w10, w01, w11;
+};
+
+BilinearWeights WeightsAt(double u, double v) {
   const int x0 = static_cast<int>(u), y0 = static_cast<int>(v);
   const double fx = u - x0, fy = v - y0;
-  const T* a = image.ptr<T>(y0) + x0;
-  const T* b = image.ptr<T>(y0 + 1) + x0;
-  return (1 - fx) * (1 - fy) * static_cast<double>(a[0]) +
-         fx * (1 - fy) * static_cast<double>(a[1]) + (1 - fx) * fy * static_cast<double>(b[0]) +
-         fx * fy * static_cast<double>(b[1]);
+  return {x0, y0, (1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy};
+}
+
+template <typename T>
+double Bilinear(const cv::Mat& image, const BilinearWeights& w) {
+  const T* a = image.ptr<T>(w.y0) + w.x0;
+  const T* b = image.ptr<T>(w.y0 + 1) + w.x0;
+  return w.w00 * static_cast<double>(a[0]) + w.w10 * static_cast<double>(a[1]) +
+         w.w01 * static_cast<double>(b[0]) + w.w11 * static_cast<double>(b[1]);
 }
 
 }  // namespace
@@ -52,7 +61,8 @@ void Registration::Linearize(const RegistrationImages& images,
                              const geometry::RigidTransform& T_ref_cur,
                              std::span<const int> indices, Eigen::VectorXd* residuals,
                              Eigen::Matrix<double, Eigen::Dynamic, 6>* jacobian, int* valid) const {
-  const Eigen::Matrix3d Rt = T_ref_cur.R.transpose();
+  const Eigen::Matrix3d& R = T_ref_cur.R;
+  const Eigen::Matrix3d Rt = R.transpose();
   const double f = camera_.f, delta = config_.huber_threshold;
   residuals->resize(static_cast<Eigen::Index>(indices.size()));
   if (jacobian) jacobian->resize(static_cast<Eigen::Index>(indices.size()), 6);
@@ -69,15 +79,19 @@ void Registration::Linearize(const RegistrationImages& images,
           u >= 0.0 && v >= 0.0 && u < camera_.width - 1.0 && v < camera_.height - 1.0;
       if (inside && images.valid_mask.at<std::uint8_t>(static_cast<int>(v + 0.5),
                                                        static_cast<int>(u + 0.5)) > 125) {
-        r = Bilinear<std::uint8_t>(images.negative_ts, u, v);
-        const Eigen::RowVector2d grad(Bilinear<float>(images.grad_u, u, v),
-                                      Bilinear<float>(images.grad_v, u, v));
-        Eigen::Matrix<double, 2, 3> dpi;
-        dpi << f / q.z(), 0.0, -f * q.x() / (q.z() * q.z()), 0.0, f / q.z(),
-            -f * q.y() / (q.z() * q.z());
-        const Eigen::RowVector3d g = grad * dpi;  // ∂r/∂q
-        J.head<3>() = 2.0 * g * Rt * geometry::Hat(p);
-        J.tail<3>() = -g * Rt;
+        const BilinearWeights at = WeightsAt(u, v);
+        r = Bilinear<std::uint8_t>(images.negative_ts, at);
+        if (jacobian) {
+          const double gu = Bilinear<float>(images.grad_u, at), gv = Bilinear<float>(images.grad_v, at);
+          // ∂r/∂q = ∇I · ∂π/∂q; with a = R (∂r/∂q)ᵀ: ∂r/∂c = 2 (∂r/∂q) Rᵀ [p]× = 2 (a × p)ᵀ and
+          // ∂r/∂t = −aᵀ.
+          const double inv_z = 1.0 / q.z();
+          const Eigen::Vector3d g(f * inv_z * gu, f * inv_z * gv,
+                                  -f * inv_z * inv_z * (gu * q.x() + gv * q.y()));
+          const Eigen::Vector3d a = R * g;
+          J.head<3>() = 2.0 * a.cross(p).transpose();
+          J.tail<3>() = -a.transpose();
+        }
         ++*valid;
       }
     }

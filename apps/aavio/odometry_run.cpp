@@ -154,6 +154,7 @@ Expected<OdometryRunResult> RunOdometry(const OdometryRunRequest& request, Conte
     if (t.status == tracking::TrackingStatus::kLost)
       lost_reasons[tracking::LostReasonName(t.lost_reason)]++;
     timings.Add("time_surface", t.representation.time_surface_ms);
+    timings.Add("ts_derived", t.representation.derived_ms);
     timings.Add("aa_map", t.representation.aa_ms);
     timings.Add("sampling", t.representation.sampling_ms);
     if (t.status != tracking::TrackingStatus::kNoMap)
@@ -307,8 +308,8 @@ Expected<OdometryRunResult> RunOdometry(const OdometryRunRequest& request, Conte
                        trajectory.size(), status_counts["ok"], status_counts["lost"],
                        status_counts["no_map"], bootstraps, reinitialisations);
   std::string stages = "median per stage [ms]:";
-  for (const char* stage : {"time_surface", "aa_map", "sampling", "tracking", "matching",
-                            "depth_refinement", "fusion", "mapping_total"}) {
+  for (const char* stage : {"time_surface", "ts_derived", "aa_map", "sampling", "tracking",
+                            "matching", "depth_refinement", "fusion", "mapping_total"}) {
     const auto all = timings.Summary();
     if (auto it = all.find(stage); it != all.end())
       stages += StrFormat(" %s %.2f", stage, it->second.median_ms);

@@ -19,7 +19,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 COLOURS = ["tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple", "tab:brown"]
-STAGES = ["time_surface", "aa_map", "sampling", "tracking", "matching", "depth_refinement",
+STAGES = ["time_surface", "ts_derived", "aa_map", "sampling", "tracking", "matching", "depth_refinement",
           "fusion", "mapping_total"]
 
 
