@@ -20,8 +20,8 @@ struct PipelineConfig {
   int max_lost_ticks = 5;
   /// Real-time mode (aavio): mapping cycles run on their own thread while tracking goes on; a
   /// cycle due while the previous one still runs is skipped (the newest observation wins), and a
-  /// finished map reaches tracking at the next tick. Faster on 2+ cores, but which ticks are mapped
-  /// depends on the machine: not bit-reproducible. Off: synchronous and deterministic.
+  /// finished map reaches tracking at the next tick. For live input: which ticks are mapped and
+  /// when maps arrive depends on the machine, so it is not bit-reproducible.
   bool real_time = false;
   /// Concurrent mapping (aavio; used when real_time is off): a mapping cycle runs on its own
   /// thread while the ticks up to the next cycle are tracked, and its map reaches tracking at

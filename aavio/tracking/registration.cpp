@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <optional>
 
 #include "aavio/geometry/rotation.hpp"
 
@@ -103,7 +104,8 @@ void Registration::Linearize(const RegistrationImages& images,
 }
 
 RegistrationResult Registration::Solve(const RegistrationImages& images,
-                                       const geometry::RigidTransform& T_ref_cur_init) const {
+                                       const geometry::RigidTransform& T_ref_cur_init,
+                                       const std::optional<Eigen::Matrix3d>& R_ref_cur_prior) const {
   RegistrationResult result;
   result.T_ref_cur = T_ref_cur_init;
   const int n = static_cast<int>(points_.size());
@@ -124,15 +126,33 @@ RegistrationResult Registration::Solve(const RegistrationImages& images,
     return r_trial.squaredNorm() / n;
   };
   result.initial_cost = mean_cost(result.T_ref_cur, &result.valid_fraction);
+  // The gyroscope prior as a cost term: w‖K δ‖², δ = log(R R_priorᵀ), K = 180/π. The increment
+  // R ← R(c) R moves δ by ≈ 2c, so with the unnormalised JᵀJ (data cost × count) its rows are
+  // √(w·count)·K·2I with residual √(w·count)·K·δ.
+  const bool use_prior = R_ref_cur_prior.has_value() && config_.gyro_rotation_weight > 0.0;
+  constexpr double kDegPerRad = 180.0 / M_PI;
+  auto deviation = [&](const Eigen::Matrix3d& R) {
+    return geometry::LogSO3(R * R_ref_cur_prior->transpose());
+  };
+  auto prior_cost = [&](const Eigen::Matrix3d& R) {
+    return use_prior ? config_.gyro_rotation_weight * kDegPerRad * kDegPerRad *
+                           deviation(R).squaredNorm()
+                     : 0.0;
+  };
   double lambda = 1e-4;
   // One LM step on the points `idx` (damping adapted across steps, as the reference): true if a
   // step was accepted; `small` when its cost reduction was below the tolerance.
   auto lm_step = [&](const std::vector<int>& idx, bool* small, Eigen::Matrix<double, 6, 1>* step) {
     const double count = static_cast<double>(idx.size());
     Linearize(images, result.T_ref_cur, idx, &r, &J, &valid);
-    const double cost = r.squaredNorm() / count;
-    const Eigen::Matrix<double, 6, 6> H = J.transpose() * J;
-    const Eigen::Matrix<double, 6, 1> g = J.transpose() * r;
+    const double cost = r.squaredNorm() / count + prior_cost(result.T_ref_cur.R);
+    Eigen::Matrix<double, 6, 6> H = J.transpose() * J;
+    Eigen::Matrix<double, 6, 1> g = J.transpose() * r;
+    if (use_prior) {
+      const double k = config_.gyro_rotation_weight * count * kDegPerRad * kDegPerRad;
+      H.topLeftCorner<3, 3>() += 4.0 * k * Eigen::Matrix3d::Identity();
+      g.head<3>() += 2.0 * k * deviation(result.T_ref_cur.R);
+    }
     for (int attempt = 0; attempt < 6; ++attempt) {
       Eigen::Matrix<double, 6, 6> A = H;
       A.diagonal() += lambda * H.diagonal() + Eigen::Matrix<double, 6, 1>::Constant(1e-9);
@@ -145,7 +165,7 @@ RegistrationResult Registration::Solve(const RegistrationImages& images,
       const geometry::RigidTransform trial = ApplyIncrement(result.T_ref_cur, theta);
       int trial_valid = 0;
       Linearize(images, trial, idx, &r_trial, nullptr, &trial_valid);
-      const double trial_cost = r_trial.squaredNorm() / count;
+      const double trial_cost = r_trial.squaredNorm() / count + prior_cost(trial.R);
       if (trial_cost < cost) {
         result.T_ref_cur = trial;
         lambda = std::max(1e-7, lambda * 0.1);

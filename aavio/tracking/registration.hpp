@@ -10,6 +10,7 @@
 
 #include <Eigen/Core>
 #include <opencv2/core/mat.hpp>
+#include <optional>
 #include <random>
 #include <span>
 #include <vector>
@@ -46,8 +47,11 @@ class Registration {
   Registration(std::span<const Eigen::Vector3d> points_ref, const Camera& camera,
                const TrackingConfig& config, std::uint64_t seed);
 
+  /// LM from T_ref_cur_init. With `R_ref_cur_prior` and config.gyro_rotation_weight > 0 the cost
+  /// also holds weight·‖log(R R_priorᵀ)‖² [deg²] (the gyroscope's rotation as a soft prior).
   RegistrationResult Solve(const RegistrationImages& images,
-                           const geometry::RigidTransform& T_ref_cur_init) const;
+                           const geometry::RigidTransform& T_ref_cur_init,
+                           const std::optional<Eigen::Matrix3d>& R_ref_cur_prior = {}) const;
 
   /// Residuals (robustly weighted: √w r) and their Jacobian rows for `indices` at T_ref_cur;
   /// out-of-image points give r = 255 (weighted) and a zero row. Exposed for tests.

@@ -112,5 +112,36 @@ TEST(Registration, ConvergesFromTwoDegreesAndFiveCentimetres) {
   }
 }
 
+// The gyroscope's rotation as a soft prior: weight 0 leaves the data alone, a heavy weight holds
+// the rotation at the prior (and a wrong sign of its gradient would leave LM stuck at the start).
+TEST(Registration, RotationPriorPullsTowardsTheGyroscope) {
+  const std::vector<Eigen::Vector3d> map = EdgeMap(5);
+  geometry::RigidTransform truth;
+  truth.R = geometry::ExpSO3(Eigen::Vector3d(0.01, 0.02, -0.01));
+  truth.t = {0.03, 0.01, 0.05};
+  const Images images = Render(map, truth);
+  const RegistrationImages input{images.negative, images.du, images.dv, images.valid};
+  geometry::RigidTransform start = truth;
+  start.R = geometry::ExpSO3(Eigen::Vector3d(0.0, 1.0, 0.0) * (1.0 * M_PI / 180.0)) * truth.R;
+  const Eigen::Matrix3d prior =
+      geometry::ExpSO3(Eigen::Vector3d(1.0, 0.0, 0.0) * (0.5 * M_PI / 180.0)) * truth.R;
+  auto degrees_from = [](const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
+    return geometry::LogSO3(a * b.transpose()).norm() * 180.0 / M_PI;
+  };
+  TrackingConfig config;
+  config.max_iterations = 20;
+  config.polish_iterations = 3;
+  for (const double weight : {0.0, 1e6}) {
+    config.gyro_rotation_weight = weight;
+    const Registration reg(map, kCamera, config, 3);
+    const RegistrationResult result = reg.Solve(input, start, prior);
+    if (weight == 0.0) {
+      EXPECT_LT(degrees_from(result.T_ref_cur.R, truth.R), 0.1);
+    } else {
+      EXPECT_LT(degrees_from(result.T_ref_cur.R, prior), 0.05);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace aavio::tracking

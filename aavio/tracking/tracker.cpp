@@ -92,7 +92,10 @@ TrackingResult Tracker::Track(const events::Observation& obs, const cv::Mat& val
     const Registration registration(points_ref, camera_, config_,
                                     seed_ ^ static_cast<std::uint64_t>(obs.t_ns));
     const RegistrationImages images{obs.negative_ts_left, obs.grad_u, obs.grad_v, valid_mask};
-    result.registration = registration.Solve(images, T_ref_world * predicted);
+    const geometry::RigidTransform T_ref_predicted = T_ref_world * predicted;
+    std::optional<Eigen::Matrix3d> R_prior;
+    if (delta_R_cam) R_prior = T_ref_predicted.R;  // the gyroscope's rotation
+    result.registration = registration.Solve(images, T_ref_predicted, R_prior);
     result.registration_ms = MsSince(start);
     const geometry::RigidTransform estimate = map_->T_world_ref * result.registration.T_ref_cur;
     // Divergence: too few residuals inside the image, a cost that grew, or a pose implausibly

@@ -16,7 +16,8 @@ Status TrackingConfig::Validate() const {
       .Positive("step_tolerance", step_tolerance)
       .Positive("max_correction_deg", max_correction_deg)
       .Positive("max_correction_m", max_correction_m)
-      .InRange("velocity_gain", velocity_gain, 0.0, 1.0);
+      .InRange("velocity_gain", velocity_gain, 0.0, 1.0)
+      .InRange("gyro_rotation_weight", gyro_rotation_weight, 0.0, 1e9);
   return check.status();
 }
 

@@ -24,6 +24,11 @@ struct TrackingConfig {
   /// (reset to 0 when lost). 1 = constant velocity of the last tick ([ICRA]); smaller values
   /// average the registration's noise out of the prediction; 0 = zero motion ([ESVO]).
   double velocity_gain = 1.0;
+  /// aavio: with the gyroscope prior, the registration also pays weight·‖δ‖² for the rotation δ
+  /// [deg] between its estimate and the gyro-predicted rotation — a soft prior in units of the
+  /// mean squared robust residual [TS levels² per deg²] (typically 10²–40² per point). 0 = the
+  /// paper: the prediction is only the initial value (algorithm.md §5.2).
+  double gyro_rotation_weight = 0.0;
 
   template <typename V>
   void VisitFields(V&& v) {
@@ -38,6 +43,7 @@ struct TrackingConfig {
     v("max_correction_deg", max_correction_deg);
     v("max_correction_m", max_correction_m);
     v("velocity_gain", velocity_gain);
+    v("gyro_rotation_weight", gyro_rotation_weight);
   }
   Status Validate() const;
 };

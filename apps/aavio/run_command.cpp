@@ -284,7 +284,7 @@ void RegisterRun(CLI::App& app, Context& ctx) {
                 "ESVO-like mode: newest-event selection of 10k points, static stereo only, no "
                 "IMU prior");
   sub->add_flag("--real-time", options->real_time,
-                "Mapping on its own thread (pipeline.real_time): faster, not bit-reproducible");
+                "Maps reach tracking as soon as they are done and cycles are skipped while one runs (pipeline.real_time): for live input, not bit-reproducible");
   sub->add_flag("--gt-map", options->gt_map,
                 "Tracking only, against maps built from the sequence's ground-truth depth");
   sub->add_option("--start", options->start_s, "Seconds to skip")->check(CLI::NonNegativeNumber);
