@@ -12,7 +12,9 @@ function(aavio_set_warnings target)
   target_compile_options(${target} PRIVATE -Wno-missing-field-initializers)
   # Lets GCC vectorise loops with a clamp (if-conversion of floating-point code); results are
   # unchanged (no -ffast-math, no FMA contraction: -std=c++20 keeps -ffp-contract=off).
-  target_compile_options(${target} PRIVATE -fno-trapping-math)
+  # -fno-math-errno: sqrt and friends need not set errno (nothing here reads it), so loops with
+  # them vectorise; the values are the same (IEEE sqrt is correctly rounded either way).
+  target_compile_options(${target} PRIVATE -fno-trapping-math -fno-math-errno)
   # GCC 12 warns falsely on `"literal" + std::string&&` at -O2 (GCC bug 105651).
   if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU" AND CMAKE_CXX_COMPILER_VERSION VERSION_LESS 13)
     target_compile_options(${target} PRIVATE -Wno-restrict)

@@ -107,15 +107,18 @@ struct Evaluation {
 void Weigh(const float* raw, int n, double nu, double s2, Evaluation* e) {
   const float nu1 = static_cast<float>(nu + 1.0), nu_f = static_cast<float>(nu),
               inv_s2 = static_cast<float>(1.0 / s2);
-  double cost = 0.0;
+  // Element-wise first (vectorised), then the double sum in order.
+  float wr2[kMaxPatch];
   for (int k = 0; k < n; ++k) {
     const float rk = raw[k];
     const float w = nu1 / (nu_f + rk * rk * inv_s2);
     const float sw = std::sqrt(w);
     e->sqrt_weights[k] = sw;
     e->weighted[k] = sw * rk;
-    cost += static_cast<double>(w * rk * rk);
+    wr2[k] = w * rk * rk;
   }
+  double cost = 0.0;
+  for (int k = 0; k < n; ++k) cost += static_cast<double>(wr2[k]);
   e->cost = cost;
 }
 
