@@ -29,6 +29,7 @@ struct DsecH5EventStream::State {
   std::vector<std::uint16_t> xs, ys;
   std::vector<std::int16_t> ps;
   std::vector<std::int64_t> ts;
+  std::vector<events::Event> block;  // the block's events before the reorder buffer
 
   Status ReadRange(std::uint64_t begin, std::uint64_t n);
   Status ReadBlock();
@@ -77,20 +78,32 @@ Status DsecH5EventStream::State::ReadBlock() {
   AAVIO_RETURN_IF_ERROR(ReadRange(next_index, n));
   const int width = options.width;
   const int height = options.height;
-  for (std::uint64_t i = 0; i < n; ++i) {
-    if (width > 0 && (xs[i] >= width || ys[i] >= height)) {
-      return InvalidArgument(path + ": event " + std::to_string(next_index + i) + " at (" +
-                             std::to_string(xs[i]) + ", " + std::to_string(ys[i]) +
-                             ") is outside the " + std::to_string(width) + "x" +
-                             std::to_string(height) +
-                             " sensor; does the calibration belong to this recording?");
+  if (width > 0) {
+    for (std::uint64_t i = 0; i < n; ++i) {
+      if (xs[i] >= width || ys[i] >= height) {
+        return InvalidArgument(path + ": event " + std::to_string(next_index + i) + " at (" +
+                               std::to_string(xs[i]) + ", " + std::to_string(ys[i]) +
+                               ") is outside the " + std::to_string(width) + "x" +
+                               std::to_string(height) +
+                               " sensor; does the calibration belong to this recording?");
+      }
     }
-    const events::Event e{(ts[i] + t_offset_us) * kNsPerUs, xs[i], ys[i],
-                          static_cast<std::uint8_t>(ps[i] > 0 ? 1 : 0)};
-    Status status = reorder.Push(e, "");
+  }
+  block.resize(n);
+  for (std::uint64_t i = 0; i < n; ++i) {
+    block[i] = {(ts[i] + t_offset_us) * kNsPerUs, xs[i], ys[i],
+                static_cast<std::uint8_t>(ps[i] > 0 ? 1 : 0)};
+  }
+  // In-order runs in one copy; an element out of order goes through Push (reordered or an error).
+  const std::span<const events::Event> all(block);
+  for (std::size_t i = 0; i < n;) {
+    i += reorder.AppendInOrder(all.subspan(i));
+    if (i == n) break;
+    Status status = reorder.Push(block[i], "");
     if (!status.ok()) {
       return InvalidArgument(path + ": event " + std::to_string(next_index + i) + status.message());
     }
+    ++i;
   }
   next_index += n;
   return Status::Ok();

@@ -6,8 +6,10 @@
 /// older than the newest one read so far is put back in place; an element older than that is an
 /// error naming the file, the position and the size of the jump.
 
+#include <algorithm>
 #include <limits>
 #include <memory>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -70,6 +72,19 @@ class ReorderBuffer {
       return Status::Ok();
     }
     return PushOutOfOrder(element, where_if_error);
+  }
+  /// Appends the leading elements that are in time order after everything pushed and released so
+  /// far, in one copy; returns how many (the caller pushes the next one with Push, which reorders
+  /// it or names the error). 0 before the first Push.
+  std::size_t AppendInOrder(std::span<const T> elements) {
+    if (!has_newest_) return 0;
+    TimeNs floor = std::max(newest_ns_, released_until_ns_);
+    std::size_t k = 0;
+    for (; k < elements.size() && elements[k].t_ns >= floor; ++k) floor = elements[k].t_ns;
+    if (k == 0) return 0;
+    pending_.insert(pending_.end(), elements.begin(), elements.begin() + static_cast<std::ptrdiff_t>(k));
+    newest_ns_ = elements[k - 1].t_ns;
+    return k;
   }
   /// Everything strictly older than t_end_ns is final once an element at or after
   /// t_end_ns + max_reorder_ns has been pushed (or the source is exhausted).

@@ -46,6 +46,26 @@ TEST(ReorderBuffer, RefusesElementsOlderThanWhatWasReleased) {
   EXPECT_FALSE(buffer.Push(At(150), "f").ok());
 }
 
+TEST(ReorderBuffer, AppendsInOrderRunsAndStopsWherePushMustDecide) {
+  ReorderBuffer<events::Event> buffer(10);
+  const std::vector<events::Event> block = {At(100), At(101), At(101), At(105), At(103), At(106)};
+  EXPECT_EQ(buffer.AppendInOrder(block), 0u);  // nothing pushed yet: the first goes through Push
+  ASSERT_TRUE(buffer.Push(block[0], "f").ok());
+  const std::span<const events::Event> rest(block.data() + 1, block.size() - 1);
+  EXPECT_EQ(buffer.AppendInOrder(rest), 3u);  // 101, 101, 105; 103 is out of order
+  ASSERT_TRUE(buffer.Push(block[4], "f").ok());  // within the window: reordered
+  EXPECT_EQ(buffer.AppendInOrder(rest.subspan(4)), 1u);  // 106 after the newest (105)
+  std::vector<events::Event> out;
+  buffer.Release(1000, &out);
+  ASSERT_EQ(out.size(), block.size());
+  for (std::size_t i = 1; i < out.size(); ++i)
+    EXPECT_LE(out[i - 1].t_ns, out[i].t_ns);
+  // Nothing older than what was released is appended.
+  const std::vector<events::Event> late = {At(900), At(1001)};
+  EXPECT_EQ(buffer.AppendInOrder(late), 0u);
+  EXPECT_FALSE(buffer.Push(late[0], "f").ok());
+}
+
 TEST(ReorderBuffer, ResetDropsEverythingBeforeTheFloor) {
   ReorderBuffer<events::Event> buffer(10);
   ASSERT_TRUE(buffer.Push(At(100), "f").ok());
