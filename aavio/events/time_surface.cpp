@@ -6,6 +6,7 @@
 
 #include "aavio/common/fast_math.hpp"
 #include "aavio/common/format.hpp"
+#include "aavio/common/vector_clones.hpp"
 
 namespace aavio::events {
 namespace {
@@ -17,7 +18,7 @@ constexpr TimeNs kEpochSpan = kNsPerS;  // how far the data may run ahead of the
 #if defined(__x86_64__) && defined(__GNUC__)
 __attribute__((target_clones("avx2", "default")))
 #endif
-void RenderRow(const float* t_last, std::uint8_t* dst, int width, float t_s, float inv_tau) {
+AAVIO_AVX2_CLONES void RenderRow(const float* t_last, std::uint8_t* dst, int width, float t_s, float inv_tau) {
   for (int x = 0; x < width; ++x) {
     const float e = std::clamp((t_last[x] - t_s) * inv_tau, -87.0f, 0.0f);
     dst[x] = static_cast<std::uint8_t>(static_cast<int>(255.0f * FastExpNonPositive(e) + 0.5f));

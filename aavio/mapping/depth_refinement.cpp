@@ -5,9 +5,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "aavio/common/vector_clones.hpp"
+
 namespace aavio::mapping {
 
-double StudentTScale2(std::span<const float> residuals, double nu, double s2_start) {
+AAVIO_AVX2_CLONES double StudentTScale2(std::span<const float> residuals, double nu, double s2_start) {
   // r² of the non-zero residuals once, in float (4 partial sums for speed; the values are far
   // from float's precision limits).
   float r2[64 * 64];
@@ -46,7 +48,7 @@ constexpr int kMaxPatch = 64 * 64;
 
 // Bilinear samples of a w×h patch centred at (x, y), one set of weights for all; false if any
 // sample would fall outside the image.
-bool SamplePatch(const cv::Mat& image, double x, double y, int pw, int ph, float* out) {
+AAVIO_AVX2_CLONES bool SamplePatch(const cv::Mat& image, double x, double y, int pw, int ph, float* out) {
   const double left = x - pw / 2, top = y - ph / 2;
   const int x0 = static_cast<int>(std::floor(left)), y0 = static_cast<int>(std::floor(top));
   if (x0 < 0 || y0 < 0 || x0 + pw >= image.cols || y0 + ph >= image.rows) return false;
@@ -104,7 +106,7 @@ struct Evaluation {
 
 // Student-t weights of residuals `raw` with the scale s2 (fixed within an LM iteration); the
 // weights in float (they only steer the step), the cost summed in double.
-void Weigh(const float* raw, int n, double nu, double s2, Evaluation* e) {
+AAVIO_AVX2_CLONES void Weigh(const float* raw, int n, double nu, double s2, Evaluation* e) {
   const float nu1 = static_cast<float>(nu + 1.0), nu_f = static_cast<float>(nu),
               inv_s2 = static_cast<float>(1.0 / s2);
   // Element-wise first (vectorised), then the double sum in order.

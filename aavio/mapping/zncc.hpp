@@ -6,6 +6,8 @@
 #include <cstddef>
 #include <vector>
 
+#include "aavio/common/vector_clones.hpp"
+
 namespace aavio::mapping {
 
 /// A patch prepared once for many comparisons: its values minus their mean, and their norm.
@@ -90,10 +92,7 @@ inline double ZnccCost(const NormalizedPatch& a, const float* top_left, int stri
 /// ZnccCost's up to float rounding in a different summation order. On x86-64 an AVX2 clone is
 /// picked at load time where the CPU has it: wider lanes, the same operations per position in the
 /// same order (no FMA contraction), so the same costs bit for bit.
-#if defined(__x86_64__) && defined(__GNUC__)
-__attribute__((target_clones("avx2", "default")))
-#endif
-inline void ZnccCostsAlongRow(const NormalizedPatch& a, const float* top_left, int stride, int count,
+AAVIO_AVX2_CLONES inline void ZnccCostsAlongRow(const NormalizedPatch& a, const float* top_left, int stride, int count,
                               double* costs) {
   if (count <= 0) return;
   const int span = count + a.cols - 1;
