@@ -1,5 +1,8 @@
 #include "aavio/mapping/depth_map.hpp"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -132,46 +135,57 @@ void DepthMap::Clean(double max_stddev, int min_age, double rho_lo, double rho_h
 }
 
 void DepthMap::Regularize(const RegularizationConfig& config, double compatibility_sigmas) {
-  // Neighbours are read from the map as it was before this pass.
-  const std::vector<std::int32_t> index_before = index_;
-  const std::vector<DepthPoint> points_before = points_;
+  // Every point reads its neighbours from the map as it was before this pass: the new depths and
+  // the removals are collected (points in parallel) and applied afterwards, in slot order.
+  const std::size_t n = points_.size();
   const int w = stereo_.width, h = stereo_.height, r = config.radius;
   // Compatible(p, q) = |ρp − ρq| < k·σp or < k·σq: each point's k·σ once, not per pair.
-  std::vector<double> reach(points_before.size(), 0.0);
-  for (std::size_t slot = 0; slot < points_before.size(); ++slot)
-    if (Live(slot)) reach[slot] = compatibility_sigmas * std::sqrt(points_before[slot].variance());
-  std::vector<const DepthPoint*> close;
-  for (std::size_t slot = 0; slot < points_before.size(); ++slot) {
-    if (!Live(slot)) continue;
-    const DepthPoint& p = points_before[slot];
-    const int x = cell_of_[slot] % w, y = cell_of_[slot] / w;
-    int neighbours = 0;
-    close.clear();
-    for (int yy = std::max(0, y - r); yy <= std::min(h - 1, y + r); ++yy) {
-      const std::int32_t* row = index_before.data() + static_cast<std::size_t>(yy) * w;
-      for (int xx = std::max(0, x - r); xx <= std::min(w - 1, x + r); ++xx) {
-        const std::int32_t q_slot = row[xx];
-        if (q_slot < 0 || (xx == x && yy == y)) continue;
-        const DepthPoint& q = points_before[static_cast<std::size_t>(q_slot)];
-        ++neighbours;
-        const double d = std::abs(p.rho - q.rho);
-        if (d < reach[slot] || d < reach[static_cast<std::size_t>(q_slot)]) close.push_back(&q);
+  std::vector<double> reach(n, 0.0);
+  for (std::size_t slot = 0; slot < n; ++slot)
+    if (Live(slot)) reach[slot] = compatibility_sigmas * std::sqrt(points_[slot].variance());
+  enum : char { kKeep, kFused, kRemove };
+  std::vector<char> outcome(n, kKeep);
+  std::vector<double> fused_rho(n, 0.0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 256),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+    std::vector<const DepthPoint*> close;
+    for (std::size_t slot = range.begin(); slot != range.end(); ++slot) {
+      if (!Live(slot)) continue;
+      const DepthPoint& p = points_[slot];
+      const int x = cell_of_[slot] % w, y = cell_of_[slot] / w;
+      int neighbours = 0;
+      close.clear();
+      for (int yy = std::max(0, y - r); yy <= std::min(h - 1, y + r); ++yy) {
+        const std::int32_t* row = index_.data() + static_cast<std::size_t>(yy) * w;
+        for (int xx = std::max(0, x - r); xx <= std::min(w - 1, x + r); ++xx) {
+          const std::int32_t q_slot = row[xx];
+          if (q_slot < 0 || (xx == x && yy == y)) continue;
+          const DepthPoint& q = points_[static_cast<std::size_t>(q_slot)];
+          ++neighbours;
+          const double d = std::abs(p.rho - q.rho);
+          if (d < reach[slot] || d < reach[static_cast<std::size_t>(q_slot)]) close.push_back(&q);
+        }
       }
+      if (neighbours <= config.min_neighbours) continue;
+      if (static_cast<int>(close.size()) <= config.min_close_neighbours) {
+        outcome[slot] = kRemove;  // an outlier among many neighbours
+        continue;
+      }
+      // FuseStudentT over the compatible neighbours, keeping only what ρ depends on.
+      double rho = p.rho, s2 = p.s2, nu = p.nu;
+      for (const DepthPoint* q : close) {
+        const double sum = s2 + q->s2, d = rho - q->rho, nu_min = std::min(nu, q->nu);
+        rho = (q->s2 * rho + s2 * q->rho) / sum;
+        s2 = (nu_min + d * d / sum) / (nu_min + 1.0) * (s2 * q->s2 / sum);
+        nu = nu_min + 1.0;
+      }
+      outcome[slot] = kFused;
+      fused_rho[slot] = rho;
     }
-    if (neighbours <= config.min_neighbours) continue;
-    if (static_cast<int>(close.size()) <= config.min_close_neighbours) {
-      Remove(static_cast<std::int32_t>(slot));  // an outlier among many neighbours
-      continue;
-    }
-    // FuseStudentT over the compatible neighbours, keeping only what ρ depends on.
-    double rho = p.rho, s2 = p.s2, nu = p.nu;
-    for (const DepthPoint* q : close) {
-      const double sum = s2 + q->s2, d = rho - q->rho, nu_min = std::min(nu, q->nu);
-      rho = (q->s2 * rho + s2 * q->rho) / sum;
-      s2 = (nu_min + d * d / sum) / (nu_min + 1.0) * (s2 * q->s2 / sum);
-      nu = nu_min + 1.0;
-    }
-    points_[slot].rho = rho;
+  });
+  for (std::size_t slot = 0; slot < n; ++slot) {
+    if (outcome[slot] == kRemove) Remove(static_cast<std::int32_t>(slot));
+    else if (outcome[slot] == kFused) points_[slot].rho = fused_rho[slot];
   }
 }
 
