@@ -1,10 +1,12 @@
-// `aavio demo`: the whole tool in one command — simulate the `mini` preset (a hand-held stereo
-// event camera pair with an IMU in a room, 3 s), run the odometry on it, and print its accuracy
+// `aavio demo`: the whole tool in one command — simulate 6 s of the `rpg` preset (a hand-held
+// DAVIS240C stereo pair with an IMU in a room), run the odometry on it, and print its accuracy
 // against the simulator's ground truth and where the outputs are.
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <filesystem>
 #include <ostream>
+#include <string>
+#include <vector>
 
 #include "aavio/common/format.hpp"
 #include "cli.hpp"
@@ -16,7 +18,8 @@ namespace fs = std::filesystem;
 
 struct DemoOptions {
   std::string out_dir = "aavio_demo";
-  std::string preset = "mini";
+  std::string preset = "rpg";
+  double duration_s = 6.0;  // 0: the preset's own length
   bool resimulate = false;
 };
 
@@ -26,9 +29,13 @@ int RunDemo(const DemoOptions& options, Context& ctx) {
   const std::string sequence = (out / "sequence").string(), run = (out / "run").string();
   if (options.resimulate || !fs::exists(out / "sequence" / "sequence.yaml")) {
     ctx.out << "1/2 simulating the '" << options.preset << "' preset into " << sequence << "\n";
-    const int code = RunCli({"aavio", "simulate", "--preset", options.preset, "--out", sequence,
-                             "--quiet"},
-                            ctx.out, ctx.err);
+    std::vector<std::string> args = {"aavio", "simulate", "--preset", options.preset,
+                                     "--out", sequence, "--quiet"};
+    if (options.duration_s > 0.0) {
+      args.push_back("--duration");
+      args.push_back(StrFormat("%g", options.duration_s));
+    }
+    const int code = RunCli(args, ctx.out, ctx.err);
     if (code != kExitOk) return code;
   } else {
     ctx.out << "1/2 reusing the simulated sequence in " << sequence << " (--resimulate to redo)\n";
@@ -54,6 +61,10 @@ void RegisterDemo(CLI::App& app, Context& ctx) {
   sub->add_option("--out", options->out_dir, "Output folder")->capture_default_str();
   sub->add_option("--preset", options->preset, "Simulation preset (mini, rpg, mvsec, dsec)")
       ->capture_default_str();
+  sub->add_option("--duration", options->duration_s,
+                  "Seconds to simulate (0: the preset's length)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 3600.0));
   sub->add_flag("--resimulate", options->resimulate, "Simulate again even if the folder has data");
   sub->callback([&ctx, options] { ctx.action = [&ctx, options] { return RunDemo(*options, ctx); }; });
 }
