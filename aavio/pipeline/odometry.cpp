@@ -162,7 +162,7 @@ Status Odometry::Tick(TimeNs t_ns) {
     if (pending_cycle_.valid()) pending_cycle_.get();  // a cycle of the old map: dropped
     mapper_.Reset();
     PublishToTracking(nullptr);
-    tracker_.Reset(t_ns, tracked.T_world_cur);
+    tracker_.Reset(t_ns, tracked.T_world_cur, /*keep_velocity=*/true);
     history_.clear();
     tick.reinitialised = true;
     lost_ticks_ = 0;

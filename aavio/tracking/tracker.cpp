@@ -52,11 +52,12 @@ Tracker::Tracker(const Camera& camera, const TrackingConfig& config,
       R_imu_cam_(R_imu_cam),
       seed_(seed) {}
 
-void Tracker::Reset(TimeNs t_ns, const geometry::RigidTransform& T_world_cam) {
+void Tracker::Reset(TimeNs t_ns, const geometry::RigidTransform& T_world_cam,
+                    bool keep_velocity) {
   t_prev_ = t_ns;
   T_prev_ = T_world_cam;
   T_prevprev_.reset();
-  velocity_.setZero();
+  if (!keep_velocity) velocity_.setZero();
   prev_tracked_ = false;
   if (!bias_) bias_.emplace(imu_config_, t_ns);
 }
@@ -121,11 +122,11 @@ TrackingResult Tracker::Track(const events::Observation& obs, const cv::Mat& val
                           R_imu_cam_ * tracked_cam * R_imu_cam_.transpose(), prev_tracked_);
   }
   prev_tracked_ = result.status == TrackingStatus::kOk;
-  // Lost or without a map: hold the prediction but forget the velocity (no run-away).
+  // Lost: hold the prediction and coast on the velocity; without a map: forget it.
   if (result.status == TrackingStatus::kOk) {
     const double gain = config_.velocity_gain;
     velocity_ = gain * (result.T_world_cur.t - T_prev_.t) + (1.0 - gain) * velocity_;
-  } else {
+  } else if (result.status != TrackingStatus::kLost) {
     velocity_.setZero();
   }
   T_prevprev_ = result.status == TrackingStatus::kOk ? std::optional(T_prev_) : std::nullopt;

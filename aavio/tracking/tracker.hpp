@@ -61,7 +61,7 @@ class Tracker {
           const Eigen::Matrix3d& R_imu_cam, std::uint64_t seed);
 
   /// Starts (or restarts, keeping the gyroscope bias estimate) at a known pose.
-  void Reset(TimeNs t_ns, const geometry::RigidTransform& T_world_cam);
+  void Reset(TimeNs t_ns, const geometry::RigidTransform& T_world_cam, bool keep_velocity = false);
   void SetMap(std::shared_ptr<const TrackingMap> map) { map_ = std::move(map); }
   /// The bias in use (configured, static-init or online estimate); valid after Reset.
   Eigen::Vector3d gyro_bias() const { return bias_ ? bias_->bias() : Eigen::Vector3d::Zero(); }

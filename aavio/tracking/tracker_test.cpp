@@ -149,5 +149,54 @@ TEST(Tracker, DivergenceHoldsThePredictionAndReportsLost) {
   EXPECT_EQ(unmapped.Track(obs, images.valid, still).status, TrackingStatus::kNoMap);
 }
 
+// A lost tick coasts on the velocity of the tracked ones (a car does not stop because a
+// registration failed), and so does a restart that keeps it; a plain restart forgets it.
+TEST(Tracker, LostTicksCoastOnTheVelocity) {
+  const std::vector<Eigen::Vector3d> map_points = EdgeMap(5);
+  TrackingConfig config;  // the presets' steps
+  config.max_iterations = 20;
+  config.polish_iterations = 3;
+  Tracker tracker(kCamera, config, imu::ImuConfig{}, Eigen::Matrix3d::Identity(), 1);
+  tracker.Reset(0, geometry::RigidTransform());
+  auto map = std::make_shared<TrackingMap>();
+  map->points_world = map_points;
+  tracker.SetMap(map);
+  auto observe = [&](const geometry::RigidTransform& T, TimeNs t) {
+    const testing::Images images = Render(map_points, T);
+    events::Observation obs;
+    obs.t_ns = t;
+    obs.negative_ts_left = images.negative;
+    obs.grad_u = images.du;
+    obs.grad_v = images.dv;
+    return std::pair{obs, images.valid};
+  };
+  geometry::RigidTransform moved;
+  moved.t = {0.02, 0.0, 0.0};
+  auto [first, valid] = observe(moved, 10 * kNsPerMs);
+  const TrackingResult ok = tracker.Track(first, valid, {});
+  ASSERT_EQ(ok.status, TrackingStatus::kOk);
+  const double step = ok.T_world_cur.t.x();
+  EXPECT_NEAR(step, 0.02, 0.003);
+  // An impossible view (8° turned) twice: lost, and the pose moves on by the same step each time.
+  geometry::RigidTransform turned;
+  turned.R = geometry::ExpSO3(Eigen::Vector3d(0, 8.0 * M_PI / 180.0, 0));
+  auto [bad, bad_valid] = observe(turned, 20 * kNsPerMs);
+  const TrackingResult lost = tracker.Track(bad, bad_valid, {});
+  ASSERT_EQ(lost.status, TrackingStatus::kLost);
+  EXPECT_NEAR(lost.T_world_cur.t.x(), 2.0 * step, 1e-9);
+  bad.t_ns = 30 * kNsPerMs;
+  EXPECT_NEAR(tracker.Track(bad, bad_valid, {}).T_world_cur.t.x(), 3.0 * step, 1e-9);
+  // Restarted at the held pose keeping the velocity (re-initialisation): still coasting.
+  tracker.Reset(30 * kNsPerMs, tracker.Track(bad, bad_valid, {}).T_world_cur, true);
+  tracker.SetMap(nullptr);
+  bad.t_ns = 50 * kNsPerMs;
+  const TrackingResult coasting = tracker.Track(bad, bad_valid, {});
+  EXPECT_EQ(coasting.status, TrackingStatus::kNoMap);
+  EXPECT_NEAR(coasting.T_world_cur.t.x(), 5.0 * step, 1e-9);
+  // Without a map the velocity is forgotten afterwards, as after a plain restart.
+  bad.t_ns = 60 * kNsPerMs;
+  EXPECT_NEAR(tracker.Track(bad, bad_valid, {}).T_world_cur.t.x(), 5.0 * step, 1e-9);
+}
+
 }  // namespace
 }  // namespace aavio::tracking
