@@ -25,7 +25,8 @@ Status StaticStereoConfig::Validate() const {
       .Require(zncc_threshold > 0.0 && zncc_threshold <= 1.0, "zncc_threshold",
                "= " + FieldChecker::Num(zncc_threshold) + " must be in (0, 1] (cost ½(1 − ZNCC))")
       .InRange("empty_patch_fraction", empty_patch_fraction, 0.0, 1.0)
-      .InRange("uniqueness", uniqueness, 0.0, 1.0);
+      .InRange("uniqueness", uniqueness, 0.0, 1.0)
+      .InRange("left_right_tolerance_px", left_right_tolerance_px, -1, 100);
   return check.status();
 }
 

@@ -22,6 +22,9 @@ struct StaticStereoConfig {
   /// Reject a match when another local minimum's ZNCC is within this fraction of the best's
   /// (e.g. 0.1: a rival with ≥ 90 % of the best correlation); 0 = off, as the reference codes.
   double uniqueness = 0.0;
+  /// aavio: match the right patch back along the left row; reject unless it lands within this
+  /// many pixels of the left point (a left-right consistency check); < 0 = off, as the reference.
+  int left_right_tolerance_px = -1;
 
   template <typename V>
   void VisitFields(V&& v) {
@@ -34,6 +37,7 @@ struct StaticStereoConfig {
     v("smooth_time_surface", smooth_time_surface);
     v("empty_patch_fraction", empty_patch_fraction);
     v("uniqueness", uniqueness);
+    v("left_right_tolerance_px", left_right_tolerance_px);
   }
   Status Validate() const;
 };

@@ -30,6 +30,31 @@ bool EmptyPatch(const float* top_left, int stride, int rows, int cols, double ma
   return low > max_fraction * rows * cols;
 }
 
+// Left-right check (aavio): the right patch at u − d searched along the left row over the same
+// disparity range must find its best match within `tolerance` of d.
+bool LeftRightConsistent(const StaticStereoInput& in, int u, int v, int d,
+                         const DisparityRange& range, int tolerance, const StaticStereoConfig& c) {
+  const int hw = c.patch_width / 2, hh = c.patch_height / 2;
+  const int w = in.left.cols;
+  const int stride = static_cast<int>(in.left.step1());
+  const int x = u - d;  // the right patch's centre column
+  NormalizedPatch patch;
+  if (!PreparePatch(in.right.ptr<float>(v - hh) + (x - hw), stride, c.patch_height, c.patch_width,
+                    &patch)) {
+    return false;
+  }
+  // Left columns x + d' for d' in [d_lo, d_hi], the patch inside the image.
+  const int d_lo = range.min, d_hi = std::min(range.max, w - 2 - hw - x);
+  if (d_hi < d_lo) return false;
+  const int count = d_hi - d_lo + 1;
+  thread_local std::vector<double> back;
+  back.resize(static_cast<std::size_t>(count));
+  ZnccCostsAlongRow(patch, in.left.ptr<float>(v - hh) + (x + d_lo - hw), stride, count, back.data());
+  const auto best = std::min_element(back.begin(), back.end());
+  const int best_back = d_lo + static_cast<int>(best - back.begin());
+  return std::abs(best_back - d) <= tolerance;
+}
+
 bool MatchOne(const StaticStereoInput& in, const Eigen::Vector2f& x, const RectifiedStereo& stereo,
               const MappingConfig& config, const DisparityRange& range, Match* out) {
   const StaticStereoConfig& c = config.static_stereo;
@@ -98,6 +123,10 @@ bool MatchOne(const StaticStereoInput& in, const Eigen::Vector2f& x, const Recti
     }
   }
   if (best_d < 0 || best > 1.02 * theta) return false;
+  if (c.left_right_tolerance_px >= 0 &&
+      !LeftRightConsistent(in, u, v, best_d, range, c.left_right_tolerance_px, c)) {
+    return false;
+  }
   const double rho = stereo.InvDepthOfDisparity(best_d);
   if (!(rho > 0.0) || rho < config.inv_depth_min || rho > config.inv_depth_max) return false;
   *out = {x.x(), x.y(), rho, best, StereoKind::kStatic, false};

@@ -71,6 +71,39 @@ TEST(StaticStereo, FindsTheShiftOfATexture) {
   EXPECT_TRUE(MatchStatic({left, flat, valid}, points, stereo, config).empty());
 }
 
+// The left-right check keeps consistent matches and drops a match whose right patch finds a
+// better partner elsewhere on the left row.
+TEST(StaticStereo, LeftRightCheckDropsInconsistentMatches) {
+  const RectifiedStereo stereo = testing::SmallStereo();
+  MappingConfig config = Config();
+  config.static_stereo.uniqueness = 0.0;
+  cv::Mat left = testing::Texture(160, 120, 2);
+  cv::Mat right = testing::Shifted(left, 12.0, 0.0);  // d = 12 everywhere
+  const cv::Mat valid(120, 160, CV_8UC1, cv::Scalar(255));
+  const int u = 100, v = 60, hw = 7, hh = 3;
+  const cv::Rect patch_at_u(u - hw, v - hh, 15, 7);
+  // The point's true partner (d = 12) is wiped out; a copy of its patch sits at d = 30 instead,
+  // and a second copy on the left at u − 25 matches that copy at d' = 5, before d' = 30.
+  right(cv::Rect(u - 12 - hw - 3, v - hh - 3, 21, 13)).setTo(128.0f);
+  left(patch_at_u).copyTo(right(cv::Rect(u - 30 - hw, v - hh, 15, 7)));
+  const cv::Mat copy = left(patch_at_u).clone();
+  copy.copyTo(left(cv::Rect(u - 25 - hw, v - hh, 15, 7)));
+  std::vector<Eigen::Vector2f> points = {{static_cast<float>(u), static_cast<float>(v)}};
+  for (int vv = 20; vv < 100; vv += 9)  // and consistent points elsewhere
+    points.emplace_back(40.0f, static_cast<float>(vv));
+  const std::vector<Match> without = MatchStatic({left, right, valid}, points, stereo, config);
+  ASSERT_FALSE(without.empty());
+  EXPECT_EQ(without.front().u, static_cast<float>(u));
+  EXPECT_NEAR(stereo.Disparity(without.front().rho), 30.0, 1e-9);  // fooled by the copy
+  config.static_stereo.left_right_tolerance_px = 1;
+  const std::vector<Match> with = MatchStatic({left, right, valid}, points, stereo, config);
+  EXPECT_EQ(with.size(), without.size() - 1);
+  for (const Match& m : with) {
+    EXPECT_NE(m.u, static_cast<float>(u));
+    EXPECT_NEAR(stereo.Disparity(m.rho), 12.0, 1e-9);
+  }
+}
+
 TEST(StaticStereo, DisparityRangeFollowsTheDepthRange) {
   const RectifiedStereo stereo = testing::SmallStereo();
   MappingConfig config = Config();
