@@ -76,7 +76,8 @@ const std::vector<std::string> kEsvoOverrides = {
     "edge_sampling.mode=newest_events", "edge_sampling.num_points=10000",
     "mapping.max_points=10000", "mapping.temporal_stereo.enabled=false",
     "imu.use_gyro_prior=false", "mapping.snap_to_edge_px=0", "tracking.max_iterations=10",
-    "tracking.polish_iterations=0", "tracking.velocity_gain=0"};
+    "tracking.polish_iterations=0", "tracking.velocity_gain=0",
+    "mapping.static_stereo.uniqueness=0", "mapping.static_stereo.left_right_tolerance_px=-1"};
 
 Status RunFull(RunOptions options, OpenedSequence& opened, Context& ctx) {
   if (options.config.preset.empty()) {
