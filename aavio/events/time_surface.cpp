@@ -15,10 +15,8 @@ constexpr TimeNs kEpochSpan = kNsPerS;  // how far the data may run ahead of the
 
 // One row: exponent, exp, 0–255, in a loop the compiler vectorises; built for AVX2 and for the
 // x86-64 baseline, picked at load time (the same IEEE operations, so the same bytes either way).
-#if defined(__x86_64__) && defined(__GNUC__)
-__attribute__((target_clones("avx2", "default")))
-#endif
-AAVIO_AVX2_CLONES void RenderRow(const float* t_last, std::uint8_t* dst, int width, float t_s, float inv_tau) {
+AAVIO_AVX2_CLONES void RenderRow(const float* t_last, std::uint8_t* dst, int width, float t_s,
+                                 float inv_tau) {
   for (int x = 0; x < width; ++x) {
     const float e = std::clamp((t_last[x] - t_s) * inv_tau, -87.0f, 0.0f);
     dst[x] = static_cast<std::uint8_t>(static_cast<int>(255.0f * FastExpNonPositive(e) + 0.5f));

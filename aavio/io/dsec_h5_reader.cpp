@@ -81,11 +81,10 @@ Status DsecH5EventStream::State::ReadBlock() {
   if (width > 0) {
     for (std::uint64_t i = 0; i < n; ++i) {
       if (xs[i] >= width || ys[i] >= height) {
-        return InvalidArgument(path + ": event " + std::to_string(next_index + i) + " at (" +
-                               std::to_string(xs[i]) + ", " + std::to_string(ys[i]) +
-                               ") is outside the " + std::to_string(width) + "x" +
-                               std::to_string(height) +
-                               " sensor; does the calibration belong to this recording?");
+        return InvalidArgument(
+            path + ": event " + std::to_string(next_index + i) + " at (" + std::to_string(xs[i]) +
+            ", " + std::to_string(ys[i]) + ") is outside the " + std::to_string(width) + "x" +
+            std::to_string(height) + " sensor; does the calibration belong to this recording?");
       }
     }
   }

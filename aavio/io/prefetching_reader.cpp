@@ -5,7 +5,9 @@
 namespace aavio::io {
 
 PrefetchingReader::PrefetchingReader(SequenceReader* reader, std::size_t max_packets)
-    : reader_(reader), max_packets_(max_packets > 0 ? max_packets : 1), thread_([this] { Run(); }) {}
+    : reader_(reader),
+      max_packets_(max_packets > 0 ? max_packets : 1),
+      thread_([this] { Run(); }) {}
 
 PrefetchingReader::~PrefetchingReader() {
   {

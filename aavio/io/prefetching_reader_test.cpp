@@ -18,8 +18,8 @@ SequenceDescription DsecPair(const std::string& left_file, const std::string& ri
 }
 
 std::unique_ptr<SequenceReader> Open(const SequenceDescription& d) {
-  Expected<std::unique_ptr<SequenceReader>> reader = SequenceReader::Open(
-      d, {.packet_ns = 2 * kNsPerMs, .stream = {.width = 640, .height = 480}});
+  Expected<std::unique_ptr<SequenceReader>> reader =
+      SequenceReader::Open(d, {.packet_ns = 2 * kNsPerMs, .stream = {.width = 640, .height = 480}});
   EXPECT_TRUE(reader.ok()) << reader.status().message();
   return reader.ok() ? std::move(*reader) : nullptr;
 }
@@ -70,8 +70,10 @@ TEST(PrefetchingReader, PassesOnTheReadersErrorAfterTheGoodPackets) {
   for (int i = 0; i < 1'000'000 && error.ok(); ++i) {
     SensorPacket packet;
     Expected<bool> more = prefetching.Next(&packet);
-    if (!more.ok()) error = more.status();
-    else ASSERT_TRUE(*more) << "ended without the corruption's error";
+    if (!more.ok())
+      error = more.status();
+    else
+      ASSERT_TRUE(*more) << "ended without the corruption's error";
   }
   EXPECT_NE(error.message().find("corrupt.h5"), std::string::npos) << error.message();
   EXPECT_NE(error.message().find("truncated or corrupt"), std::string::npos) << error.message();

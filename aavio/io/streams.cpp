@@ -11,12 +11,12 @@ Status ReorderBuffer<T>::PushOutOfOrder(const T& element, std::string_view where
   if (element.t_ns < floor_ns_) return Status::Ok();
   if (element.t_ns < released_until_ns_ ||
       (has_newest_ && element.t_ns < newest_ns_ - max_reorder_ns_)) {
-    return InvalidArgument(
-        std::string(where_if_error) + ": timestamp " + FormatSecondsNs(element.t_ns) + " s goes back " +
-        StrFormat("%.3f ms", NsToMs(newest_ns_ - element.t_ns)) +
-        " behind the newest one, more than the reorder window of " +
-        StrFormat("%.3f ms", NsToMs(max_reorder_ns_)) +
-        "; sort the file by time (or raise the reorder window)");
+    return InvalidArgument(std::string(where_if_error) + ": timestamp " +
+                           FormatSecondsNs(element.t_ns) + " s goes back " +
+                           StrFormat("%.3f ms", NsToMs(newest_ns_ - element.t_ns)) +
+                           " behind the newest one, more than the reorder window of " +
+                           StrFormat("%.3f ms", NsToMs(max_reorder_ns_)) +
+                           "; sort the file by time (or raise the reorder window)");
   }
   if (has_newest_ && element.t_ns < newest_ns_) sorted_ = false;
   if (!has_newest_ || element.t_ns > newest_ns_) newest_ns_ = element.t_ns;

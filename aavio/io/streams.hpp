@@ -80,9 +80,11 @@ class ReorderBuffer {
     if (!has_newest_) return 0;
     TimeNs floor = std::max(newest_ns_, released_until_ns_);
     std::size_t k = 0;
-    for (; k < elements.size() && elements[k].t_ns >= floor; ++k) floor = elements[k].t_ns;
+    for (; k < elements.size() && elements[k].t_ns >= floor; ++k)
+      floor = elements[k].t_ns;
     if (k == 0) return 0;
-    pending_.insert(pending_.end(), elements.begin(), elements.begin() + static_cast<std::ptrdiff_t>(k));
+    pending_.insert(pending_.end(), elements.begin(),
+                    elements.begin() + static_cast<std::ptrdiff_t>(k));
     newest_ns_ = elements[k - 1].t_ns;
     return k;
   }

@@ -52,8 +52,8 @@ TEST(ReorderBuffer, AppendsInOrderRunsAndStopsWherePushMustDecide) {
   EXPECT_EQ(buffer.AppendInOrder(block), 0u);  // nothing pushed yet: the first goes through Push
   ASSERT_TRUE(buffer.Push(block[0], "f").ok());
   const std::span<const events::Event> rest(block.data() + 1, block.size() - 1);
-  EXPECT_EQ(buffer.AppendInOrder(rest), 3u);  // 101, 101, 105; 103 is out of order
-  ASSERT_TRUE(buffer.Push(block[4], "f").ok());  // within the window: reordered
+  EXPECT_EQ(buffer.AppendInOrder(rest), 3u);             // 101, 101, 105; 103 is out of order
+  ASSERT_TRUE(buffer.Push(block[4], "f").ok());          // within the window: reordered
   EXPECT_EQ(buffer.AppendInOrder(rest.subspan(4)), 1u);  // 106 after the newest (105)
   std::vector<events::Event> out;
   buffer.Release(1000, &out);

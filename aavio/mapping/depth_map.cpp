@@ -146,46 +146,50 @@ void DepthMap::Regularize(const RegularizationConfig& config, double compatibili
   enum : char { kKeep, kFused, kRemove };
   std::vector<char> outcome(n, kKeep);
   std::vector<double> fused_rho(n, 0.0);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 256),
-                    [&](const tbb::blocked_range<std::size_t>& range) {
-    std::vector<const DepthPoint*> close;
-    for (std::size_t slot = range.begin(); slot != range.end(); ++slot) {
-      if (!Live(slot)) continue;
-      const DepthPoint& p = points_[slot];
-      const int x = cell_of_[slot] % w, y = cell_of_[slot] / w;
-      int neighbours = 0;
-      close.clear();
-      for (int yy = std::max(0, y - r); yy <= std::min(h - 1, y + r); ++yy) {
-        const std::int32_t* row = index_.data() + static_cast<std::size_t>(yy) * w;
-        for (int xx = std::max(0, x - r); xx <= std::min(w - 1, x + r); ++xx) {
-          const std::int32_t q_slot = row[xx];
-          if (q_slot < 0 || (xx == x && yy == y)) continue;
-          const DepthPoint& q = points_[static_cast<std::size_t>(q_slot)];
-          ++neighbours;
-          const double d = std::abs(p.rho - q.rho);
-          if (d < reach[slot] || d < reach[static_cast<std::size_t>(q_slot)]) close.push_back(&q);
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, n, 256),
+      [&](const tbb::blocked_range<std::size_t>& range) {
+        std::vector<const DepthPoint*> close;
+        for (std::size_t slot = range.begin(); slot != range.end(); ++slot) {
+          if (!Live(slot)) continue;
+          const DepthPoint& p = points_[slot];
+          const int x = cell_of_[slot] % w, y = cell_of_[slot] / w;
+          int neighbours = 0;
+          close.clear();
+          for (int yy = std::max(0, y - r); yy <= std::min(h - 1, y + r); ++yy) {
+            const std::int32_t* row = index_.data() + static_cast<std::size_t>(yy) * w;
+            for (int xx = std::max(0, x - r); xx <= std::min(w - 1, x + r); ++xx) {
+              const std::int32_t q_slot = row[xx];
+              if (q_slot < 0 || (xx == x && yy == y)) continue;
+              const DepthPoint& q = points_[static_cast<std::size_t>(q_slot)];
+              ++neighbours;
+              const double d = std::abs(p.rho - q.rho);
+              if (d < reach[slot] || d < reach[static_cast<std::size_t>(q_slot)])
+                close.push_back(&q);
+            }
+          }
+          if (neighbours <= config.min_neighbours) continue;
+          if (static_cast<int>(close.size()) <= config.min_close_neighbours) {
+            outcome[slot] = kRemove;  // an outlier among many neighbours
+            continue;
+          }
+          // FuseStudentT over the compatible neighbours, keeping only what ρ depends on.
+          double rho = p.rho, s2 = p.s2, nu = p.nu;
+          for (const DepthPoint* q : close) {
+            const double sum = s2 + q->s2, d = rho - q->rho, nu_min = std::min(nu, q->nu);
+            rho = (q->s2 * rho + s2 * q->rho) / sum;
+            s2 = (nu_min + d * d / sum) / (nu_min + 1.0) * (s2 * q->s2 / sum);
+            nu = nu_min + 1.0;
+          }
+          outcome[slot] = kFused;
+          fused_rho[slot] = rho;
         }
-      }
-      if (neighbours <= config.min_neighbours) continue;
-      if (static_cast<int>(close.size()) <= config.min_close_neighbours) {
-        outcome[slot] = kRemove;  // an outlier among many neighbours
-        continue;
-      }
-      // FuseStudentT over the compatible neighbours, keeping only what ρ depends on.
-      double rho = p.rho, s2 = p.s2, nu = p.nu;
-      for (const DepthPoint* q : close) {
-        const double sum = s2 + q->s2, d = rho - q->rho, nu_min = std::min(nu, q->nu);
-        rho = (q->s2 * rho + s2 * q->rho) / sum;
-        s2 = (nu_min + d * d / sum) / (nu_min + 1.0) * (s2 * q->s2 / sum);
-        nu = nu_min + 1.0;
-      }
-      outcome[slot] = kFused;
-      fused_rho[slot] = rho;
-    }
-  });
+      });
   for (std::size_t slot = 0; slot < n; ++slot) {
-    if (outcome[slot] == kRemove) Remove(static_cast<std::int32_t>(slot));
-    else if (outcome[slot] == kFused) points_[slot].rho = fused_rho[slot];
+    if (outcome[slot] == kRemove)
+      Remove(static_cast<std::int32_t>(slot));
+    else if (outcome[slot] == kFused)
+      points_[slot].rho = fused_rho[slot];
   }
 }
 

@@ -9,7 +9,8 @@
 
 namespace aavio::mapping {
 
-AAVIO_AVX2_CLONES double StudentTScale2(std::span<const float> residuals, double nu, double s2_start) {
+AAVIO_AVX2_CLONES double StudentTScale2(std::span<const float> residuals, double nu,
+                                        double s2_start) {
   // r² of the non-zero residuals once, in float (4 partial sums for speed; the values are far
   // from float's precision limits).
   float r2[64 * 64];
@@ -48,7 +49,8 @@ constexpr int kMaxPatch = 64 * 64;
 
 // Bilinear samples of a w×h patch centred at (x, y), one set of weights for all; false if any
 // sample would fall outside the image.
-AAVIO_AVX2_CLONES bool SamplePatch(const cv::Mat& image, double x, double y, int pw, int ph, float* out) {
+AAVIO_AVX2_CLONES bool SamplePatch(const cv::Mat& image, double x, double y, int pw, int ph,
+                                   float* out) {
   const double left = x - pw / 2, top = y - ph / 2;
   const int x0 = static_cast<int>(std::floor(left)), y0 = static_cast<int>(std::floor(top));
   if (x0 < 0 || y0 < 0 || x0 + pw >= image.cols || y0 + ph >= image.rows) return false;
@@ -120,7 +122,8 @@ AAVIO_AVX2_CLONES void Weigh(const float* raw, int n, double nu, double s2, Eval
     wr2[k] = w * rk * rk;
   }
   double cost = 0.0;
-  for (int k = 0; k < n; ++k) cost += static_cast<double>(wr2[k]);
+  for (int k = 0; k < n; ++k)
+    cost += static_cast<double>(wr2[k]);
   e->cost = cost;
 }
 

@@ -49,7 +49,8 @@ bool LeftRightConsistent(const StaticStereoInput& in, int u, int v, int d,
   const int count = d_hi - d_lo + 1;
   thread_local std::vector<double> back;
   back.resize(static_cast<std::size_t>(count));
-  ZnccCostsAlongRow(patch, in.left.ptr<float>(v - hh) + (x + d_lo - hw), stride, count, back.data());
+  ZnccCostsAlongRow(patch, in.left.ptr<float>(v - hh) + (x + d_lo - hw), stride, count,
+                    back.data());
   const auto best = std::min_element(back.begin(), back.end());
   const int best_back = d_lo + static_cast<int>(best - back.begin());
   return std::abs(best_back - d) <= tolerance;

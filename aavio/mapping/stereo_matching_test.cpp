@@ -40,8 +40,8 @@ TEST(Zncc, RowSearchEqualsOneCostPerPosition) {
   ZnccCostsAlongRow(p, band.ptr<float>(12) + 5, stride, count, costs.data());
   for (int j = 0; j < count; ++j) {
     SCOPED_TRACE(j);
-    EXPECT_NEAR(costs[static_cast<std::size_t>(j)], ZnccCost(p, band.ptr<float>(12) + 5 + j, stride),
-                2e-5);
+    EXPECT_NEAR(costs[static_cast<std::size_t>(j)],
+                ZnccCost(p, band.ptr<float>(12) + 5 + j, stride), 2e-5);
   }
   EXPECT_DOUBLE_EQ(costs[0], 0.5);
   EXPECT_NEAR(costs[85], 0.0, 1e-6);

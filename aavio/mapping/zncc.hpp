@@ -92,8 +92,8 @@ inline double ZnccCost(const NormalizedPatch& a, const float* top_left, int stri
 /// ZnccCost's up to float rounding in a different summation order. On x86-64 an AVX2 clone is
 /// picked at load time where the CPU has it: wider lanes, the same operations per position in the
 /// same order (no FMA contraction), so the same costs bit for bit.
-AAVIO_AVX2_CLONES inline void ZnccCostsAlongRow(const NormalizedPatch& a, const float* top_left, int stride, int count,
-                              double* costs) {
+AAVIO_AVX2_CLONES inline void ZnccCostsAlongRow(const NormalizedPatch& a, const float* top_left,
+                                                int stride, int count, double* costs) {
   if (count <= 0) return;
   const int span = count + a.cols - 1;
   thread_local std::vector<float> col_sum, col_sq, cross, sum, sq;
@@ -115,7 +115,8 @@ AAVIO_AVX2_CLONES inline void ZnccCostsAlongRow(const NormalizedPatch& a, const 
     for (int c = 0; c < a.cols; ++c) {
       const float ac = pa[c];
       const float* src = row + c;
-      for (int j = 0; j < count; ++j) x[j] += ac * src[j];
+      for (int j = 0; j < count; ++j)
+        x[j] += ac * src[j];
     }
   }
   float* s = sum.data();

@@ -18,7 +18,8 @@
 /// never back at the origin.
 ///
 /// Tracking alone (`run_mapping` false): no mapping, no bootstrap; the caller hands maps in with
-/// SetTrackingMap (e.g. from `before_tick`, built from ground truth) — tracking measured on its own.
+/// SetTrackingMap (e.g. from `before_tick`, built from ground truth) — tracking measured on its
+/// own.
 
 #include <deque>
 #include <functional>

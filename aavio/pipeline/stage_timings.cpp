@@ -23,7 +23,8 @@ std::map<std::string, StageSummary> StageTimings::Summary() const {
   std::map<std::string, StageSummary> out;
   for (const auto& [name, s] : stages_) {
     double total_ms = 0.0;
-    for (const double ms : s.ms) total_ms += ms;
+    for (const double ms : s.ms)
+      total_ms += ms;
     out[name] = {Quantile(s.ms, 0.5), Quantile(s.ms, 0.95), s.ms.size(), Quantile(s.items, 0.5),
                  total_ms / 1000.0};
   }

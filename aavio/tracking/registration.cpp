@@ -83,7 +83,8 @@ void Registration::Linearize(const RegistrationImages& images,
         const BilinearWeights at = WeightsAt(u, v);
         r = Bilinear<std::uint8_t>(images.negative_ts, at);
         if (jacobian) {
-          const double gu = Bilinear<float>(images.grad_u, at), gv = Bilinear<float>(images.grad_v, at);
+          const double gu = Bilinear<float>(images.grad_u, at),
+                       gv = Bilinear<float>(images.grad_v, at);
           // ∂r/∂q = ∇I · ∂π/∂q; with a = R (∂r/∂q)ᵀ: ∂r/∂c = 2 (∂r/∂q) Rᵀ [p]× = 2 (a × p)ᵀ and
           // ∂r/∂t = −aᵀ.
           const double inv_z = 1.0 / q.z();
@@ -103,9 +104,9 @@ void Registration::Linearize(const RegistrationImages& images,
   }
 }
 
-RegistrationResult Registration::Solve(const RegistrationImages& images,
-                                       const geometry::RigidTransform& T_ref_cur_init,
-                                       const std::optional<Eigen::Matrix3d>& R_ref_cur_prior) const {
+RegistrationResult Registration::Solve(
+    const RegistrationImages& images, const geometry::RigidTransform& T_ref_cur_init,
+    const std::optional<Eigen::Matrix3d>& R_ref_cur_prior) const {
   RegistrationResult result;
   result.T_ref_cur = T_ref_cur_init;
   const int n = static_cast<int>(points_.size());
@@ -135,9 +136,9 @@ RegistrationResult Registration::Solve(const RegistrationImages& images,
     return geometry::LogSO3(R * R_ref_cur_prior->transpose());
   };
   auto prior_cost = [&](const Eigen::Matrix3d& R) {
-    return use_prior ? config_.gyro_rotation_weight * kDegPerRad * kDegPerRad *
-                           deviation(R).squaredNorm()
-                     : 0.0;
+    return use_prior
+               ? config_.gyro_rotation_weight * kDegPerRad * kDegPerRad * deviation(R).squaredNorm()
+               : 0.0;
   };
   double lambda = 1e-4;
   // One LM step on the points `idx` (damping adapted across steps, as the reference): true if a

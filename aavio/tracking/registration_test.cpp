@@ -80,9 +80,7 @@ struct PosedEdgeScene {
     return T;
   }();
   Images images = Render(map, truth);
-  RegistrationImages Input() const {
-    return {images.negative, images.du, images.dv, images.valid};
-  }
+  RegistrationImages Input() const { return {images.negative, images.du, images.dv, images.valid}; }
 };
 
 TEST(Registration, ConvergesFromTwoDegreesAndFiveCentimetres) {

@@ -52,8 +52,7 @@ Tracker::Tracker(const Camera& camera, const TrackingConfig& config,
       R_imu_cam_(R_imu_cam),
       seed_(seed) {}
 
-void Tracker::Reset(TimeNs t_ns, const geometry::RigidTransform& T_world_cam,
-                    bool keep_velocity) {
+void Tracker::Reset(TimeNs t_ns, const geometry::RigidTransform& T_world_cam, bool keep_velocity) {
   t_prev_ = t_ns;
   T_prev_ = T_world_cam;
   T_prevprev_.reset();

@@ -30,7 +30,7 @@ int RunDemo(const DemoOptions& options, Context& ctx) {
   if (options.resimulate || !fs::exists(out / "sequence" / "sequence.yaml")) {
     ctx.out << "1/2 simulating the '" << options.preset << "' preset into " << sequence << "\n";
     std::vector<std::string> args = {"aavio", "simulate", "--preset", options.preset,
-                                     "--out", sequence, "--quiet"};
+                                     "--out", sequence,   "--quiet"};
     if (options.duration_s > 0.0) {
       args.push_back("--duration");
       args.push_back(StrFormat("%g", options.duration_s));
@@ -61,8 +61,7 @@ void RegisterDemo(CLI::App& app, Context& ctx) {
   sub->add_option("--out", options->out_dir, "Output folder")->capture_default_str();
   sub->add_option("--preset", options->preset, "Simulation preset (mini, rpg, mvsec, dsec)")
       ->capture_default_str();
-  sub->add_option("--duration", options->duration_s,
-                  "Seconds to simulate (0: the preset's length)")
+  sub->add_option("--duration", options->duration_s, "Seconds to simulate (0: the preset's length)")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 3600.0));
   sub->add_flag("--resimulate", options->resimulate, "Simulate again even if the folder has data");

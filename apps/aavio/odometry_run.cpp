@@ -216,7 +216,8 @@ Expected<OdometryRunResult> RunOdometry(const OdometryRunRequest& request, Conte
                 static_cast<double>(packet_events));
     AAVIO_RETURN_IF_ERROR(odometry.Process(packet.left, packet.right, packet.imu,
                                            std::min(packet.t_end_ns, request.end_ns)));
-    timings.Add("event_insertion", odometry.last_insertion_ms(), static_cast<double>(packet_events));
+    timings.Add("event_insertion", odometry.last_insertion_ms(),
+                static_cast<double>(packet_events));
     AAVIO_RETURN_IF_ERROR(write_status);
     last_t = std::min(packet.t_end_ns, request.end_ns);
     if (request.progress && odometry.ticks() % 50 == 0) {

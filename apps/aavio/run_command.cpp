@@ -73,11 +73,17 @@ extern "C" void OnInterrupt(int) { g_interrupted.store(true); }
 // no IMU prior, its zero-motion prediction and 10 LM steps, none of aavio's additions), so that
 // the paper's comparisons run on the same data; later --set still apply.
 const std::vector<std::string> kEsvoOverrides = {
-    "edge_sampling.mode=newest_events", "edge_sampling.num_points=10000",
-    "mapping.max_points=10000", "mapping.temporal_stereo.enabled=false",
-    "imu.use_gyro_prior=false", "mapping.snap_to_edge_px=0", "tracking.max_iterations=10",
-    "tracking.polish_iterations=0", "tracking.velocity_gain=0",
-    "mapping.static_stereo.uniqueness=0", "mapping.static_stereo.left_right_tolerance_px=-1"};
+    "edge_sampling.mode=newest_events",
+    "edge_sampling.num_points=10000",
+    "mapping.max_points=10000",
+    "mapping.temporal_stereo.enabled=false",
+    "imu.use_gyro_prior=false",
+    "mapping.snap_to_edge_px=0",
+    "tracking.max_iterations=10",
+    "tracking.polish_iterations=0",
+    "tracking.velocity_gain=0",
+    "mapping.static_stereo.uniqueness=0",
+    "mapping.static_stereo.left_right_tolerance_px=-1"};
 
 Status RunFull(RunOptions options, OpenedSequence& opened, Context& ctx) {
   if (options.config.preset.empty()) {
@@ -285,7 +291,8 @@ void RegisterRun(CLI::App& app, Context& ctx) {
                 "ESVO-like mode: newest-event selection of 10k points, static stereo only, no "
                 "IMU prior");
   sub->add_flag("--real-time", options->real_time,
-                "Maps reach tracking as soon as they are done and cycles are skipped while one runs (pipeline.real_time): for live input, not bit-reproducible");
+                "Maps reach tracking as soon as they are done and cycles are skipped while one "
+                "runs (pipeline.real_time): for live input, not bit-reproducible");
   sub->add_flag("--gt-map", options->gt_map,
                 "Tracking only, against maps built from the sequence's ground-truth depth");
   sub->add_option("--start", options->start_s, "Seconds to skip")->check(CLI::NonNegativeNumber);
