@@ -157,8 +157,8 @@ Status Mapper::Update(const PosedObservation& now, const PosedObservation* partn
     aa_now = ToFloat(obs.aa_map, smooth_aa);
     aa_past = ToFloat(partner->obs->aa_map, smooth_aa);
     T_past_now = partner->T_world_obs.Inverse() * now.T_world_obs;
-    const std::vector<Match> temporal_matches =
-        MatchTemporal({aa_now, aa_past, T_past_now}, temporal_group, stereo_, config_);
+    const std::vector<Match> temporal_matches = MatchTemporal(
+        {aa_now, aa_past, T_past_now, &obs.grad_u, &obs.grad_v}, temporal_group, stereo_, config_);
     report->temporal_matches = static_cast<int>(temporal_matches.size());
     matches.insert(matches.end(), temporal_matches.begin(), temporal_matches.end());
   }

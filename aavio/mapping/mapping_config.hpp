@@ -57,6 +57,13 @@ struct TemporalStereoConfig {
   /// Reject a match whose depth would move by more than this fraction for one pixel of matching
   /// error (aavio; 0 = off): triangulation too ill-conditioned to be worth a map point.
   double max_relative_depth_error = 0.0;
+  /// Skip pixels whose edge runs within this angle of the epipolar segment (aavio; 0 = off):
+  /// along its own edge a patch matches everywhere — the ambiguity that sent these pixels away
+  /// from static stereo returns whenever the motion is parallel to the edge.
+  double min_edge_angle_deg = 0.0;
+  /// Reject a match when another local minimum along the segment comes this close to the best's
+  /// correlation (aavio, as static_stereo.uniqueness; 0 = off).
+  double uniqueness = 0.0;
   /// Culling of temporal estimates ([ESVO2] residual_vis_threshold_ln, stdVar_vis_threshold_ln):
   /// the AA residual differs from the TS one; ≤ 0 uses depth_refinement's thresholds.
   double residual_threshold = 0.0;
@@ -75,6 +82,8 @@ struct TemporalStereoConfig {
     v("min_parallax_px", min_parallax_px);
     v("smooth_aa", smooth_aa);
     v("max_relative_depth_error", max_relative_depth_error);
+    v("min_edge_angle_deg", min_edge_angle_deg);
+    v("uniqueness", uniqueness);
     v("residual_threshold", residual_threshold);
     v("max_inv_depth_stddev", max_inv_depth_stddev);
     v("min_depth_m", min_depth_m);

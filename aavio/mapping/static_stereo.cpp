@@ -93,16 +93,9 @@ bool MatchOne(const StaticStereoInput& in, const Eigen::Vector2f& x, const Recti
       if (e < best) best = e, best_d = d;
     }
     // Uniqueness: no other local minimum (beyond ±2 px) may come close to the best.
-    if (c.uniqueness > 0.0 && best_d >= 0) {
-      for (int d = d_lo; d <= d_hi; ++d) {
-        if (std::abs(d - best_d) <= 2) continue;
-        const std::size_t i = static_cast<std::size_t>(d - d_lo);
-        const bool local_min =
-            (d == d_lo || costs[i] <= costs[i - 1]) && (d == d_hi || costs[i] <= costs[i + 1]);
-        if (local_min && (1.0 - 2.0 * costs[i]) > (1.0 - c.uniqueness) * (1.0 - 2.0 * best)) {
-          return false;
-        }
-      }
+    if (c.uniqueness > 0.0 && best_d >= 0 &&
+        HasRivalMinimum(costs.data(), count, best_d - d_lo, c.uniqueness)) {
+      return false;
     }
   } else {
     // Coarse pass; every coarse disparity within 1.035θ marks its ±(step − 1) neighbours.

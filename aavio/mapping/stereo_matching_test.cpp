@@ -126,31 +126,72 @@ TEST(TemporalStereo, TriangulatesAKnownPoint) {
   EXPECT_NEAR(TriangulateDepth(stereo, {u0, v0}, {u1, v1}, T_past_now), 12.0, 1e-9);
 }
 
-TEST(TemporalStereo, MatchesHorizontalEdgesAlongTheEpipolarSegment) {
-  // A fronto-parallel plane at 10 m; the camera moved 0.3 m down (+y) since the past view, so the
-  // plane appears f·0.3/10 = 16.08 px lower now. Stripes are horizontal (what temporal stereo is
-  // for), with some texture so that the match is unique.
-  const RectifiedStereo stereo = testing::SmallStereo();
-  cv::Mat aa_now = testing::Texture(160, 120, 3);
-  for (int y = 0; y < 120; ++y) {
-    if (y % 13 < 2) aa_now.row(y).setTo(255.0f);
-  }
-  geometry::RigidTransform T_past_now;
-  T_past_now.t = {0.0, 0.3, 0.0};  // p_past = p_now + (0, 0.3, 0)
-  const double shift = stereo.f * 0.3 / 10.0;
-  const cv::Mat aa_past = testing::Shifted(aa_now, 0.0, -shift);  // past(y + shift) = now(y)
+// A fronto-parallel plane at 10 m; the camera moved 0.3 m down (+y) since the past view, so the
+// plane appears f·0.3/10 = 16.08 px lower now. Stripes are horizontal (what temporal stereo is
+// for), on a texture that makes the match unique unless `bare`.
+struct StripedPlane {
+  RectifiedStereo stereo = testing::SmallStereo();
+  double shift = stereo.f * 0.3 / 10.0;
+  cv::Mat aa_now, aa_past;
+  geometry::RigidTransform T_past_now;  // p_past = p_now + (0, 0.3, 0): vertical segments
   std::vector<Eigen::Vector2f> points;
-  for (int v = 30; v < 90; v += 7)
-    for (int u = 40; u < 120; u += 13)
-      points.emplace_back(u, v);
-  MappingConfig config = Config();
-  const std::vector<Match> matches =
-      MatchTemporal({aa_now, aa_past, T_past_now}, points, stereo, config);
-  ASSERT_GT(matches.size(), points.size() / 2);
+
+  explicit StripedPlane(bool bare = false) {
+    aa_now = bare ? cv::Mat(120, 160, CV_32FC1, cv::Scalar(0.0f)) : testing::Texture(160, 120, 3);
+    for (int y = 0; y < 120; ++y) {
+      if (y % 13 < 2) aa_now.row(y).setTo(255.0f);
+    }
+    T_past_now.t = {0.0, 0.3, 0.0};
+    aa_past = testing::Shifted(aa_now, 0.0, -shift);  // past(y + shift) = now(y)
+    for (int v = 30; v < 90; v += 7)
+      for (int u = 40; u < 120; u += 13)
+        points.emplace_back(u, v);
+  }
+  std::vector<Match> Matches(const MappingConfig& config, const cv::Mat* grad_u = nullptr,
+                             const cv::Mat* grad_v = nullptr) const {
+    return MatchTemporal({aa_now, aa_past, T_past_now, grad_u, grad_v}, points, stereo, config);
+  }
+};
+
+TEST(TemporalStereo, MatchesHorizontalEdgesAlongTheEpipolarSegment) {
+  const StripedPlane scene;
+  const std::vector<Match> matches = scene.Matches(Config());
+  ASSERT_GT(matches.size(), scene.points.size() / 2);
   for (const Match& m : matches) {
     EXPECT_EQ(m.kind, StereoKind::kTemporal);
-    EXPECT_NEAR(1.0 / m.rho, 10.0, 10.0 * 0.5 / shift);  // within half a pixel of parallax
+    EXPECT_NEAR(1.0 / m.rho, 10.0, 10.0 * 0.5 / scene.shift);  // within half a pixel of parallax
   }
+}
+
+// The edge-angle test keeps an edge the segment crosses and drops one the segment runs along.
+TEST(TemporalStereo, EdgeAngleTestDropsEdgesAlongTheSegment) {
+  const StripedPlane scene;
+  MappingConfig config = Config();
+  const cv::Mat zero(120, 160, CV_32FC1, cv::Scalar(0.0f));
+  const cv::Mat one(120, 160, CV_32FC1, cv::Scalar(1.0f));
+  const std::size_t all = scene.Matches(config).size();
+  ASSERT_GT(all, scene.points.size() / 2);
+  config.temporal_stereo.min_edge_angle_deg = 30.0;
+  // Horizontal edges (gradient along v): the vertical segment crosses them at 90°.
+  EXPECT_EQ(scene.Matches(config, &zero, &one).size(), all);
+  // Vertical edges (gradient along u): the segment runs along them.
+  EXPECT_TRUE(scene.Matches(config, &one, &zero).empty());
+  // A gradient along the diagonal: the segment crosses its edge at 45°.
+  config.temporal_stereo.min_edge_angle_deg = 40.0;
+  EXPECT_EQ(scene.Matches(config, &one, &one).size(), all);
+  config.temporal_stereo.min_edge_angle_deg = 50.0;
+  EXPECT_TRUE(scene.Matches(config, &one, &one).empty());
+}
+
+// Bare stripes repeat along the segment: uniqueness rejects the matches their period makes
+// ambiguous.
+TEST(TemporalStereo, UniquenessRejectsRepeatedStructure) {
+  const StripedPlane scene(/*bare=*/true);
+  MappingConfig config = Config();
+  config.static_stereo.empty_patch_fraction = 1.0;
+  ASSERT_FALSE(scene.Matches(config).empty());
+  config.temporal_stereo.uniqueness = 0.1;
+  EXPECT_TRUE(scene.Matches(config).empty());
 }
 
 TEST(DepthRefinement, RecoversSubPixelDisparityAndItsUncertainty) {

@@ -40,6 +40,8 @@ double TriangulateDepth(const RectifiedStereo& stereo, const Eigen::Vector2d& x_
 
 namespace {
 
+constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
+
 bool MatchOne(const TemporalStereoInput& in, const Eigen::Vector2f& x,
               const RectifiedStereo& stereo, const MappingConfig& config, double rho_lo,
               double rho_hi, Match* out) {
@@ -70,6 +72,14 @@ bool MatchOne(const TemporalStereoInput& in, const Eigen::Vector2f& x,
   const double length = std::max(std::abs(du), std::abs(dv));
   // Too little parallax over the whole depth range: depth would be mostly quantisation noise.
   if (length < t.min_parallax_px) return false;
+  // The edge (perpendicular to the TS gradient) must cross the segment: sin of the angle between
+  // them = |segment · gradient| / (|segment| |gradient|).
+  if (t.min_edge_angle_deg > 0.0 && in.grad_u != nullptr && in.grad_v != nullptr) {
+    const double gu = in.grad_u->at<float>(v, u), gv = in.grad_v->at<float>(v, u);
+    const double norms = std::hypot(du, dv) * std::hypot(gu, gv);
+    if (!(std::abs(du * gu + dv * gv) >= std::sin(t.min_edge_angle_deg * kDegToRad) * norms))
+      return false;
+  }
   const int steps = static_cast<int>(std::ceil(length));
   std::vector<double> costs(static_cast<std::size_t>(steps + 1), 1.0);
   int best_k = -1;
@@ -86,6 +96,8 @@ bool MatchOne(const TemporalStereoInput& in, const Eigen::Vector2f& x,
   if (best_k < 0) return false;
   const double best = costs[static_cast<std::size_t>(best_k)];
   if (best >= t.threshold_factor * config.static_stereo.zncc_threshold) return false;
+  if (t.uniqueness > 0.0 && HasRivalMinimum(costs.data(), steps + 1, best_k, t.uniqueness))
+    return false;
   // Sub-sample position along the segment: the vertex of the parabola through the best cost and
   // its neighbours.
   double k_star = best_k;

@@ -4,6 +4,8 @@
 /// the nearest and farthest allowed depth (not the reference code's fixed −10…70 px), with a
 /// wide flat patch (5 rows × 31 columns) suited to edges parallel to the baseline; the best match
 /// under threshold_factor·θ is triangulated (midpoint of the two rays) and gated by depth.
+/// aavio's optional tests: the edge must cross the segment at min_edge_angle_deg or more, and the
+/// best match must be unique along it.
 
 #include <opencv2/core/mat.hpp>
 #include <span>
@@ -19,6 +21,9 @@ struct TemporalStereoInput {
   const cv::Mat& aa_now;   ///< CV_32FC1 AA map of the current observation
   const cv::Mat& aa_past;  ///< CV_32FC1 AA map of the partner observation
   const geometry::RigidTransform& T_past_now;
+  /// Gradient of the current negative TS (CV_32FC1), for the edge-angle test; null = no test.
+  const cv::Mat* grad_u = nullptr;
+  const cv::Mat* grad_v = nullptr;
 };
 
 /// The inverse-depth interval temporal stereo searches: the configured range ∩ the depth gate.

@@ -133,4 +133,17 @@ AAVIO_AVX2_CLONES inline void ZnccCostsAlongRow(const NormalizedPatch& a, const 
   }
 }
 
+/// Uniqueness of a cost curve's minimum: true if another local minimum, more than 2 samples from
+/// `best`, reaches (1 − uniqueness) of the best's correlation (ZNCC = 1 − 2·cost).
+inline bool HasRivalMinimum(const double* costs, int count, int best, double uniqueness) {
+  const double best_zncc = 1.0 - 2.0 * costs[best];
+  for (int i = 0; i < count; ++i) {
+    if (std::abs(i - best) <= 2) continue;
+    const bool local_min =
+        (i == 0 || costs[i] <= costs[i - 1]) && (i == count - 1 || costs[i] <= costs[i + 1]);
+    if (local_min && 1.0 - 2.0 * costs[i] > (1.0 - uniqueness) * best_zncc) return true;
+  }
+  return false;
+}
+
 }  // namespace aavio::mapping
