@@ -16,6 +16,7 @@ struct RepresentationTimings {
   double derived_ms = 0.0;       ///< negative TS and its gradients
   double aa_ms = 0.0;            ///< AA map and its rectified binary image
   double sampling_ms = 0.0;      ///< edge samples
+  bool edges = false;  ///< the AA map and edge samples were built at this tick (aa/sampling_ms)
 };
 
 struct Observation {

@@ -87,7 +87,7 @@ Status RepresentationBuilder::Consume(CameraState& camera, TimeNs t_ns, bool kee
   return Status::Ok();
 }
 
-Status RepresentationBuilder::Build(TimeNs t_ns, Observation* out, bool with_right_ts) {
+Status RepresentationBuilder::Build(TimeNs t_ns, Observation* out, BuildOptions options) {
   if (t_ns <= last_tick_ns_) {
     return InvalidArgument("ticks must increase: " + FormatSecondsNs(t_ns) + " s after " +
                            FormatSecondsNs(last_tick_ns_) + " s");
@@ -101,7 +101,7 @@ Status RepresentationBuilder::Build(TimeNs t_ns, Observation* out, bool with_rig
   AAVIO_RETURN_IF_ERROR(Consume(right_, t_ns, false));
   const double decay_ms = config_.time_surface.decay_ms;
   for (CameraState* camera : {&left_, &right_}) {
-    if (camera == &right_ && !with_right_ts) {
+    if (camera == &right_ && !options.right_ts) {
       out->ts_right.release();
       continue;
     }
@@ -131,8 +131,10 @@ Status RepresentationBuilder::Build(TimeNs t_ns, Observation* out, bool with_rig
   }
   const std::span<const Event> recent(window_.data() + window_begin_,
                                       window_.size() - window_begin_);
+  if (!options.edges) return Status::Ok();
 
   start = Clock::now();
+  out->timings.edges = true;
   accumulator_.Build(recent, t_ns, &aa_);
   aa_.counts.copyTo(out->aa_counts_raw);
   cv::compare(aa_.counts, 0, scratch_binary_, cv::CMP_GT);

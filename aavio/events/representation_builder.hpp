@@ -27,6 +27,12 @@ struct RepresentationConfig {
 
 enum class Camera { kLeft, kRight };
 
+/// What a tick draws beyond the left time surface and its derived images.
+struct BuildOptions {
+  bool right_ts = true;  ///< the right time surface (static stereo, bootstrap)
+  bool edges = true;     ///< the AA map and the edge samples (mapping)
+};
+
 class RepresentationBuilder {
  public:
   /// `epoch_ns`: a time near the data (the sequence start).
@@ -37,9 +43,9 @@ class RepresentationBuilder {
   Status AddEvents(Camera camera, std::span<const Event> events);
 
   /// The observation at t_ns: every event up to t_ns must have been added. Ticks increase.
-  /// Without `with_right_ts` the right time surface is not drawn (ts_right left empty; its
-  /// events are still taken in): only mapping needs it, tracking ticks do not.
-  Status Build(TimeNs t_ns, Observation* out, bool with_right_ts = true);
+  /// Only mapping needs the right time surface, the AA map and the samples; tracking ticks skip
+  /// them with `options` (the images are left empty; every event is still taken in).
+  Status Build(TimeNs t_ns, Observation* out, BuildOptions options = {});
 
  private:
   struct CameraState {

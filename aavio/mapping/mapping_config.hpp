@@ -70,7 +70,7 @@ struct TemporalStereoConfig {
   double max_inv_depth_stddev = 0.0;
   double min_depth_m = 0.8;  ///< triangulated depth gate ([ICRA] 0.8–40 m hard-coded)
   double max_depth_m = 40.0;
-  int history_length = 100;  ///< observations kept for the partner search (≈1 s at 100 Hz)
+  int history_length = 20;  ///< mapping observations kept for the partner search (1 s at 20 Hz)
 
   template <typename V>
   void VisitFields(V&& v) {

@@ -40,7 +40,10 @@ Status MappingFrontEnd::Process(std::span<const events::Event> left,
 
 Status MappingFrontEnd::Tick(TimeNs t_ns) {
   auto obs = std::make_shared<events::Observation>();
-  AAVIO_RETURN_IF_ERROR(builder_.Build(t_ns, obs.get()));
+  // Between cycles only the left time surface (nothing maps there), as in `Odometry`.
+  const bool cycle_tick = (ticks_ + 1) % ticks_per_cycle_ == 0;
+  AAVIO_RETURN_IF_ERROR(
+      builder_.Build(t_ns, obs.get(), {.right_ts = cycle_tick, .edges = cycle_tick}));
   ++ticks_;
   if (on_tick) on_tick(obs->timings);
   Expected<geometry::RigidTransform> pose = poses_.Query(t_ns);
@@ -63,7 +66,8 @@ Status MappingFrontEnd::Tick(TimeNs t_ns) {
     if (cycle.map && on_cycle) on_cycle(cycle);
   }
 
-  // Keep this tick's AA map and pose for later temporal partners.
+  // Keep a cycle's AA map and pose for later temporal partners.
+  if (!cycle_tick) return Status::Ok();
   auto light = std::make_shared<events::Observation>();
   light->t_ns = obs->t_ns;
   light->aa_map = obs->aa_map;

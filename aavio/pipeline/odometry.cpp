@@ -82,10 +82,12 @@ void Odometry::PublishToTracking(const mapping::LocalMapPtr& map) {
 
 Status Odometry::Tick(TimeNs t_ns) {
   auto obs = std::make_shared<events::Observation>();
-  // The right time surface only where mapping may run: a bootstrap, or a mapping cycle's tick.
+  // The right time surface, AA map and samples only where mapping may run: a bootstrap, or a
+  // mapping cycle's tick (and where a ground-truth map is built from the samples, without mapping).
   const bool maps_here =
       run_mapping_ && (!mapper_.initialized() || (ticks_ + 1) % ticks_per_cycle_ == 0);
-  AAVIO_RETURN_IF_ERROR(builder_.Build(t_ns, obs.get(), maps_here));
+  AAVIO_RETURN_IF_ERROR(builder_.Build(
+      t_ns, obs.get(), {.right_ts = maps_here, .edges = maps_here || !run_mapping_}));
   ++ticks_;
   OdometryTick tick;
   tick.t_ns = t_ns;
@@ -168,8 +170,9 @@ Status Odometry::Tick(TimeNs t_ns) {
     lost_ticks_ = 0;
   }
 
-  // Keep this tick's AA map and tracked pose for later temporal partners.
-  if (tracked.status == tracking::TrackingStatus::kOk || tick.bootstrap) {
+  // Keep this tick's AA map and tracked pose for later temporal partners: partners are earlier
+  // mapping ticks, as in the reference's queue of mapping frames.
+  if (!obs->aa_map.empty() && (tracked.status == tracking::TrackingStatus::kOk || tick.bootstrap)) {
     auto light = std::make_shared<events::Observation>();
     light->t_ns = obs->t_ns;
     light->aa_map = obs->aa_map;

@@ -155,8 +155,10 @@ Expected<OdometryRunResult> RunOdometry(const OdometryRunRequest& request, Conte
       lost_reasons[tracking::LostReasonName(t.lost_reason)]++;
     timings.Add("time_surface", t.representation.time_surface_ms);
     timings.Add("ts_derived", t.representation.derived_ms);
-    timings.Add("aa_map", t.representation.aa_ms);
-    timings.Add("sampling", t.representation.sampling_ms);
+    if (t.representation.edges) {  // mapping ticks only
+      timings.Add("aa_map", t.representation.aa_ms);
+      timings.Add("sampling", t.representation.sampling_ms);
+    }
     if (t.status != tracking::TrackingStatus::kNoMap)
       timings.Add("tracking", t.tracking_ms, t.registration_iterations);
     if (t.mapping_wait_ms > 0.0) timings.Add("mapping_wait", t.mapping_wait_ms);

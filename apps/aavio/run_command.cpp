@@ -164,8 +164,10 @@ Status Run(const RunOptions& options, Context& ctx) {
   pipeline::MappingFrontEnd front_end(rig, *config, *poses, begin);
   front_end.on_tick = [&](const events::RepresentationTimings& t) {
     timings.Add("time_surface", t.time_surface_ms);
-    timings.Add("aa_map", t.aa_ms);
-    timings.Add("sampling", t.sampling_ms);
+    if (t.edges) {  // mapping ticks only
+      timings.Add("aa_map", t.aa_ms);
+      timings.Add("sampling", t.sampling_ms);
+    }
   };
   front_end.on_cycle = [&](const pipeline::MappingCycle& cycle) {
     ++cycles;
