@@ -16,6 +16,21 @@ ImuNoiseModel ImuNoiseModel::Perfect() {
   return m;
 }
 
+ImuNoiseModel ImuNoiseModel::Datasheet() {
+  constexpr double kPi = 3.14159265358979323846;
+  ImuNoiseModel m;
+  m.gyro_noise_density = 0.005 * kPi / 180.0;  // 8.73e-5 rad/s/√Hz
+  m.accel_noise_density = 400e-6 * 9.80665;    // 3.92e-3 m/s²/√Hz
+  return m;
+}
+
+Expected<ImuNoiseModel> ImuNoiseModel::Named(const std::string& name) {
+  if (name == "esvo2") return ImuNoiseModel();
+  if (name == "datasheet") return Datasheet();
+  if (name == "perfect") return Perfect();
+  return InvalidArgument("IMU noise model '" + name + "': use esvo2, datasheet or perfect");
+}
+
 Status ImuNoiseModel::Validate() const {
   FieldChecker check;
   check.InRange("rate_hz", rate_hz, 1.0, 100000.0)

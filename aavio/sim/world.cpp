@@ -68,6 +68,10 @@ geometry::RigidTransform SimulationWorld::T_world_camera(int side, TimeNs t_ns) 
 Expected<SimulationWorld> BuildSimulationWorld(const SimulationRequest& request) {
   Expected<SimulationPreset> preset = GetSimulationPreset(request.preset);
   if (!preset) return preset.status();
+  Expected<ImuNoiseModel> imu_noise = ImuNoiseModel::Named(request.imu_noise);
+  if (!imu_noise) return imu_noise.status();
+  imu_noise->rate_hz = preset->imu.rate_hz;  // the preset's sensor rate, the named noise
+  preset->imu = *imu_noise;
   Expected<geometry::StereoRig> rig = preset->rig();
   if (!request.calibration.empty()) {
     Expected<io::LoadedCalibration> loaded = io::LoadCalibration(request.calibration);

@@ -26,6 +26,7 @@ struct SimulationRequest {
   std::string calibration;              ///< ESVO/DSEC calibration replacing the preset's
   std::string body_to_camera = "auto";  ///< identity | driving | auto (driving rule for cars)
   bool preview = false;
+  std::string imu_noise = "esvo2";  ///< esvo2 | datasheet | perfect (ImuNoiseModel::Named)
 };
 
 struct SimulationWorld {

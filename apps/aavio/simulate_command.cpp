@@ -69,6 +69,10 @@ void RegisterSimulate(CLI::App& app, Context& ctx) {
   sub->add_option("--body-to-camera", request->body_to_camera,
                   "identity, driving (camera +z along travel, +y down) or auto")
       ->check(CLI::IsMember({"identity", "driving", "auto"}));
+  sub->add_option("--imu-noise", request->imu_noise,
+                  "IMU noise: esvo2 (default; ESVO2's back-end figures), datasheet (MPU-6050/6150: "
+                  "gyroscope 30x quieter) or perfect")
+      ->check(CLI::IsMember({"esvo2", "datasheet", "perfect"}));
   sub->add_flag("--preview", request->preview,
                 "Write preview/ PNGs (event frames, depth, top view)");
   sub->add_flag("--quiet", *quiet, "No progress output");
