@@ -14,7 +14,8 @@ namespace aavio::pipeline {
 
 struct PipelineConfig {
   std::int64_t random_seed = 1;  ///< seeds every random choice; same seed, same trajectory
-  int num_threads = 0;           ///< worker threads, 0 = all cores; results do not depend on it
+  int num_threads = 0;           ///< workers of the parallel stages (TBB, OpenCV), 0 = all cores;
+                                 ///< results do not depend on it
   int max_buffered_events = 5'000'000;  ///< per camera, oldest dropped beyond ([ESVO] 5e6)
   /// Consecutive lost ticks after which mapping re-initialises (SGM) at the held pose (aavio)
   int max_lost_ticks = 5;

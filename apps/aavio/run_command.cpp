@@ -2,17 +2,18 @@
 // mapping only (`--gt-poses`: the sequence's ground-truth poses drive mapping, and the maps are
 // scored against its ground-truth depth, design.md §6) and tracking only (`--gt-map`,
 // track_gt_map.cpp).
+#include <tbb/global_control.h>
 #include <unistd.h>
 
-#include <atomic>
-#include <csignal>
-
 #include <CLI/CLI.hpp>
+#include <atomic>
 #include <chrono>
+#include <csignal>
 #include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
+#include <optional>
 #include <ostream>
 
 #include "aavio/common/format.hpp"
@@ -26,9 +27,9 @@
 #include "aavio/pipeline/stage_timings.hpp"
 #include "cli.hpp"
 #include "config_resolution.hpp"
-#include "sequence_opening.hpp"
 #include "odometry_run.hpp"
 #include "run_evaluation.hpp"
+#include "sequence_opening.hpp"
 #include "track_gt_map.hpp"
 
 namespace aavio::cli {
@@ -107,7 +108,13 @@ Status RunFull(RunOptions options, OpenedSequence& opened, Context& ctx) {
   const TimeNs end =
       options.duration_s > 0.0 ? begin + SecondsToNs(options.duration_s) : reader->end_ns();
   if (options.start_s > 0.0) AAVIO_RETURN_IF_ERROR(reader->Seek(begin));
+  // Worker threads of the parallel stages (TBB) and of OpenCV; 0 = all cores.
   cv::setNumThreads(config->pipeline.num_threads);
+  std::optional<tbb::global_control> workers;
+  if (config->pipeline.num_threads > 0) {
+    workers.emplace(tbb::global_control::max_allowed_parallelism,
+                    static_cast<std::size_t>(config->pipeline.num_threads));
+  }
   OdometryRunRequest request;
   request.sequence = &opened;
   request.config = &*config;
