@@ -6,6 +6,26 @@
 #include <opencv2/imgproc.hpp>
 
 namespace aavio::eval {
+namespace {
+
+bool OnDiscontinuity(const cv::Mat& depth_m, int x, int y) {
+  float lo = depth_m.at<float>(y, x), hi = lo;
+  for (int dy = -1; dy <= 1; ++dy) {
+    const int yy = y + dy;
+    if (yy < 0 || yy >= depth_m.rows) continue;
+    for (int dx = -1; dx <= 1; ++dx) {
+      const int xx = x + dx;
+      if (xx < 0 || xx >= depth_m.cols) continue;
+      const float z = depth_m.at<float>(yy, xx);
+      if (z <= 0.0f) return true;  // next to the sky or an unrendered pixel
+      lo = std::min(lo, z);
+      hi = std::max(hi, z);
+    }
+  }
+  return static_cast<double>(hi) > kDiscontinuityRatio * static_cast<double>(lo);
+}
+
+}  // namespace
 
 void DepthErrorAccumulator::Add(const std::vector<Eigen::Vector3d>& points_world,
                                 const cv::Mat& gt_depth_m, const cv::Mat& gt_edges,
@@ -29,6 +49,10 @@ void DepthErrorAccumulator::Add(const std::vector<Eigen::Vector3d>& points_world
     if (!gt_edges.empty() && gt_edges.at<std::uint8_t>(vi, ui) == 255) {
       ++horizontal_points_;
       relative_horizontal_sum_ += error / z_gt;
+    }
+    if (OnDiscontinuity(gt_depth_m, ui, vi)) {
+      ++discontinuity_points_;
+      relative_discontinuity_sum_ += error / z_gt;
     }
   }
   if (gt_edges.empty()) return;
@@ -74,6 +98,13 @@ DepthErrorSummary DepthErrorAccumulator::Summary() const {
   s.points_horizontal = horizontal_points_;
   s.relative_horizontal =
       horizontal_points_ == 0 ? 0.0 : relative_horizontal_sum_ / horizontal_points_;
+  s.points_discontinuity = discontinuity_points_;
+  if (discontinuity_points_ > 0)
+    s.relative_discontinuity = relative_discontinuity_sum_ / discontinuity_points_;
+  if (s.points > discontinuity_points_) {
+    s.relative_continuous =
+        (s.relative * s.points - relative_discontinuity_sum_) / (s.points - discontinuity_points_);
+  }
   return s;
 }
 

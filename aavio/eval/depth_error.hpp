@@ -2,7 +2,10 @@
 /// Depth accuracy of a map against ground truth (design.md §6): for every estimated point with
 /// ground truth, |z_est − z_gt| (mean, median) and |Δz| / z_gt (mean relative); completeness =
 /// share of ground-truth edge pixels with an estimate within one pixel, overall and split into
-/// near-horizontal edges and the others.
+/// near-horizontal edges and the others. Points on a depth discontinuity (a ground-truth depth
+/// within one pixel differs by more than `kDiscontinuityRatio`) are also scored apart, as the
+/// "disc" regions of the Middlebury and KITTI stereo benchmarks: there a sub-pixel shift of the
+/// point decides between foreground and background depth.
 
 #include <Eigen/Core>
 #include <opencv2/core/mat.hpp>
@@ -18,6 +21,10 @@ struct PinholeCamera {
   double f = 0.0, cx = 0.0, cy = 0.0;
 };
 
+/// A pixel is on a depth discontinuity when the largest and the smallest ground-truth depth of
+/// its 3×3 neighbourhood differ by more than this factor.
+inline constexpr double kDiscontinuityRatio = 1.1;
+
 struct DepthErrorSummary {
   std::size_t points = 0;  ///< estimates with ground truth
   std::size_t frames = 0;
@@ -30,6 +37,9 @@ struct DepthErrorSummary {
   double completeness_other = 0.0;
   std::size_t points_horizontal = 0;  ///< estimates on near-horizontal GT edges
   double relative_horizontal = 0.0;
+  std::size_t points_discontinuity = 0;  ///< estimates on a GT depth discontinuity
+  double relative_discontinuity = 0.0;   ///< mean relative error of those
+  double relative_continuous = 0.0;      ///< mean relative error of all the others
 };
 
 class DepthErrorAccumulator {
@@ -51,6 +61,8 @@ class DepthErrorAccumulator {
   std::vector<double> errors_, relative_;
   double relative_horizontal_sum_ = 0.0;
   std::size_t horizontal_points_ = 0;
+  double relative_discontinuity_sum_ = 0.0;
+  std::size_t discontinuity_points_ = 0;
   std::size_t edges_ = 0, edges_covered_ = 0;
   std::size_t horizontal_edges_ = 0, horizontal_covered_ = 0;
   std::size_t frames_ = 0;

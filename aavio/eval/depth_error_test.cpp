@@ -35,6 +35,32 @@ TEST(DepthError, ErrorsAndCompletenessOnAPlane) {
   // The column: rows 9–11 are within 1 px of the row's points: 3 of its 30 pixels.
   EXPECT_NEAR(s.completeness_other, 3.0 / 30.0, 1e-12);
   EXPECT_EQ(s.points_horizontal, points.size());
+  EXPECT_EQ(s.points_discontinuity, 0u);
+  EXPECT_NEAR(s.relative_continuous, 0.01, 1e-9);
+}
+
+// A box at 5 m (columns 20 and right of it) in front of a wall at 20 m: an estimate at the box's
+// depth one pixel outside its silhouette is scored 75 % off, and apart from the others.
+TEST(DepthError, PointsOnDepthDiscontinuitiesAreScoredApart) {
+  const PinholeCamera camera{40, 30, 50.0, 20.0, 15.0};
+  cv::Mat depth(30, 40, CV_32FC1, cv::Scalar(20.0f));
+  depth.colRange(20, 40).setTo(5.0f);
+  auto at = [&](int x, int y, double z) {
+    return Eigen::Vector3d((x - 20.0) / 50.0 * z, (y - 15.0) / 50.0 * z, z);
+  };
+  const std::vector<Eigen::Vector3d> points = {
+      at(19, 10, 5.0),  // silhouette: the box's depth on the wall's pixel
+      at(30, 10, 5.1),  // the box, 2 % off
+      at(5, 10, 20.4),  // the wall, 2 % off
+  };
+  DepthErrorAccumulator acc(camera);
+  acc.Add(points, depth, cv::Mat(), geometry::RigidTransform());
+  const DepthErrorSummary s = acc.Summary();
+  EXPECT_EQ(s.points, 3u);
+  EXPECT_EQ(s.points_discontinuity, 1u);
+  EXPECT_NEAR(s.relative_discontinuity, 0.75, 1e-6);
+  EXPECT_NEAR(s.relative_continuous, 0.02, 1e-6);
+  EXPECT_NEAR(s.relative, (0.75 + 0.04) / 3.0, 1e-6);
 }
 
 }  // namespace

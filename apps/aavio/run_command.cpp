@@ -272,15 +272,7 @@ Status Run(const RunOptions& options, Context& ctx) {
       "map points on average\n",
       data_s, wall_s, wall_s > 0.0 ? data_s / wall_s : 0.0, static_cast<long long>(cycles),
       cycles > 0 ? static_cast<double>(map_points_sum) / cycles : 0.0);
-  if (!gt_depth.empty()) {
-    ctx.out << StrFormat(
-        "depth vs ground truth (%zu points over %zu maps): mean %.3f m, median %.3f m, relative "
-        "%.2f %% (median %.2f %%, %.1f %% of points off by > 10 %%); completeness %.1f %% "
-        "(near-horizontal edges %.1f %%, others %.1f %%)\n",
-        depth.points, depth.frames, depth.mean_m, depth.median_m, 100.0 * depth.relative,
-        100.0 * depth.relative_median, 100.0 * depth.outliers, 100.0 * depth.completeness,
-        100.0 * depth.completeness_horizontal, 100.0 * depth.completeness_other);
-  }
+  if (!gt_depth.empty()) ctx.out << DepthTable(depth);
   ctx.out << "wrote " << options.out_dir << "/{config.yaml,summary.json}\n";
   return Status::Ok();
 }

@@ -173,6 +173,9 @@ nlohmann::json DepthJson(const eval::DepthErrorSummary& s) {
           {"points", s.points},
           {"points_near_horizontal", s.points_horizontal},
           {"relative_near_horizontal", s.relative_horizontal},
+          {"points_on_discontinuities", s.points_discontinuity},
+          {"relative_on_discontinuities", s.relative_discontinuity},
+          {"relative_off_discontinuities", s.relative_continuous},
           {"frames", s.frames}};
 }
 
@@ -208,11 +211,13 @@ std::string TrajectoryEvaluationTable(const TrajectoryEvaluation& e) {
 std::string DepthTable(const eval::DepthErrorSummary& s) {
   return StrFormat(
       "depth (%zu points over %zu maps): mean %.3f m, median %.3f m, relative %.2f %% (median "
-      "%.2f %%, %.1f %% of points > 10 %% off); completeness %.1f %% (near-horizontal edges "
+      "%.2f %%, %.1f %% of points > 10 %% off; %.2f %% on the %.1f %% of points at depth "
+      "discontinuities, %.2f %% elsewhere); completeness %.1f %% (near-horizontal edges "
       "%.1f %%, others %.1f %%)\n",
       s.points, s.frames, s.mean_m, s.median_m, 100.0 * s.relative, 100.0 * s.relative_median,
-      100.0 * s.outliers, 100.0 * s.completeness, 100.0 * s.completeness_horizontal,
-      100.0 * s.completeness_other);
+      100.0 * s.outliers, 100.0 * s.relative_discontinuity,
+      s.points > 0 ? 100.0 * s.points_discontinuity / s.points : 0.0, 100.0 * s.relative_continuous,
+      100.0 * s.completeness, 100.0 * s.completeness_horizontal, 100.0 * s.completeness_other);
 }
 
 }  // namespace aavio::cli
