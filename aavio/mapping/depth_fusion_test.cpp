@@ -153,5 +153,31 @@ TEST(SgmBootstrap, DepthOfAShiftedTextureAndTooFewPoints) {
             std::string::npos);
 }
 
+// With bootstrap.max_relative_stddev set, SGM points are held to it like refined ones:
+// σ_ρ = 0.004 /m is 8 % of ρ at 16 px of disparity (20 m), but 43 % at 3 px (107 m).
+TEST(SgmBootstrap, DropsPointsTooFarForTheirUncertainty) {
+  const RectifiedStereo stereo = testing::SmallStereo();
+  const cv::Mat left = testing::Texture(160, 120, 5);
+  cv::Mat left8, near8, far8;
+  left.convertTo(left8, CV_8U);
+  testing::Shifted(left, 16.0, 0.0).convertTo(near8, CV_8U);
+  testing::Shifted(left, 3.0, 0.0).convertTo(far8, CV_8U);
+  std::vector<Eigen::Vector2f> points;
+  for (int v = 20; v < 100; v += 3)
+    for (int u = 60; u < 140; u += 3)
+      points.emplace_back(u, v);
+  MappingConfig config;
+  config.bootstrap.min_points = 100;
+  config.bootstrap.inv_depth_stddev = 0.004;
+  ASSERT_TRUE(BootstrapWithSgm(left8, far8, points, stereo, config).ok());  // gate off
+  config.bootstrap.max_relative_stddev = 0.1;
+  const auto near = BootstrapWithSgm(left8, near8, points, stereo, config);
+  ASSERT_TRUE(near.ok()) << near.status().message();
+  EXPECT_GT(near->size(), points.size() / 2);
+  const auto far = BootstrapWithSgm(left8, far8, points, stereo, config);
+  ASSERT_FALSE(far.ok());
+  EXPECT_NE(far.status().message().find("fewer than"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace aavio::mapping

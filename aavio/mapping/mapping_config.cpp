@@ -93,7 +93,8 @@ Status BootstrapConfig::Validate() const {
       .Require(block_size >= 1 && block_size <= 31 && IsOdd(block_size), "block_size",
                "must be odd, from 1 to 31 (OpenCV StereoSGBM)")
       .InRange("uniqueness_ratio", uniqueness_ratio, 0, 100)
-      .Positive("inv_depth_stddev", inv_depth_stddev);
+      .Positive("inv_depth_stddev", inv_depth_stddev)
+      .InRange("max_relative_stddev", max_relative_stddev, 0.0, 100.0);
   return check.status();
 }
 

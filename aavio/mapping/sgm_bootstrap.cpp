@@ -25,6 +25,7 @@ Expected<std::vector<DepthPoint>> BootstrapWithSgm(const cv::Mat& ts_left, const
   sgm->compute(ts_left, ts_right, disparity);
   const double sigma2 = b.inv_depth_stddev * b.inv_depth_stddev;
   const double nu = config.depth_refinement.student_t_nu;
+  const double max_relative = b.max_relative_stddev;
   std::vector<DepthPoint> out;
   std::vector<char> taken(static_cast<std::size_t>(stereo.width) * stereo.height, 0);
   for (const Eigen::Vector2f& x : points) {
@@ -37,6 +38,9 @@ Expected<std::vector<DepthPoint>> BootstrapWithSgm(const cv::Mat& ts_left, const
     if (d16 <= 0) continue;  // invalid (negative) or infinitely far
     const double rho = stereo.InvDepthOfDisparity(d16 / 16.0);
     if (rho < config.inv_depth_min || rho > config.inv_depth_max) continue;
+    // As refined points (depth_refinement.max_relative_stddev): with σ_ρ fixed, a point too far
+    // for it (a disparity of a pixel or two) would carry a depth known to tens of %.
+    if (max_relative > 0.0 && b.inv_depth_stddev > max_relative * rho) continue;
     DepthPoint p;
     p.u = static_cast<float>(u);
     p.v = static_cast<float>(v);

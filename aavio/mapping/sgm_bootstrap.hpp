@@ -1,6 +1,7 @@
 #pragma once
 /// The first map (algorithm.md §4.12): semi-global matching (OpenCV StereoSGBM) of the rectified
-/// time-surface pair, kept only at the edge samples, each point with σ_ρ = inv_depth_stddev.
+/// time-surface pair, kept only at the edge samples, each point with σ_ρ = inv_depth_stddev
+/// (optionally dropped when σ_ρ / ρ > bootstrap.max_relative_stddev).
 /// Accepted when at least bootstrap.min_points points survive.
 
 #include <opencv2/core/mat.hpp>
