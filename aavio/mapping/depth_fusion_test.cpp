@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <random>
+
 #include "aavio/geometry/rotation.hpp"
 #include "aavio/mapping/mapping_test_utils.hpp"
 #include "aavio/mapping/sgm_bootstrap.hpp"
@@ -78,6 +80,80 @@ TEST(DepthMap, FusionRules) {
   EXPECT_LT(map.size(), before);
   EXPECT_NE(map.At(10, 20), nullptr);
   EXPECT_EQ(map.At(12, 22), nullptr);
+}
+
+// Regularisation as algorithm.md §4.10 states it, by a plain scan of every cell of the window:
+// the reference the map's own (bitset-indexed, parallel) pass must reproduce exactly.
+std::vector<DepthPoint> RegularizeByScan(const DepthMap& map, const RegularizationConfig& config,
+                                         double sigmas) {
+  const int w = map.stereo().width, h = map.stereo().height, r = config.radius;
+  std::vector<DepthPoint> out;
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      const DepthPoint* p = map.At(x, y);
+      if (p == nullptr) continue;
+      int neighbours = 0;
+      std::vector<DepthPoint> close;
+      for (int yy = std::max(0, y - r); yy <= std::min(h - 1, y + r); ++yy) {
+        for (int xx = std::max(0, x - r); xx <= std::min(w - 1, x + r); ++xx) {
+          const DepthPoint* q = map.At(xx, yy);
+          if (q == nullptr || (xx == x && yy == y)) continue;
+          ++neighbours;
+          if (Compatible(*p, *q, sigmas)) close.push_back(*q);
+        }
+      }
+      DepthPoint result = *p;
+      if (neighbours > config.min_neighbours) {
+        if (static_cast<int>(close.size()) <= config.min_close_neighbours) continue;  // removed
+        DepthPoint fused = *p;
+        for (const DepthPoint& q : close)
+          fused = FuseStudentT(fused, q);
+        result.rho = fused.rho;
+      }
+      out.push_back(result);
+    }
+  }
+  return out;
+}
+
+TEST(DepthMap, RegularizationMatchesAPlainScanOfTheRule) {
+  // 150 px wide, so windows straddle the 64-cell words of the occupancy bitsets; clusters of
+  // points on two depths with some outliers, sparse elsewhere.
+  const RectifiedStereo stereo = testing::SmallStereo(150, 90);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (const int radius : {2, 5, 33}) {
+    DepthMap map(stereo, {}, 0);
+    FusionConfig fusion;
+    fusion.radius = 0;
+    for (int i = 0; i < 3000; ++i) {
+      const float u = static_cast<float>(unit(rng) * 149.0),
+                  v = static_cast<float>(unit(rng) * 89.0);
+      const bool near_surface = u < 75.0f;
+      double rho = (near_surface ? 0.5 : 0.2) + 0.01 * (unit(rng) - 0.5);
+      if (unit(rng) < 0.05) rho *= 2.0;  // an outlier
+      map.Fuse(Point(u, v, rho, 0.005 + 0.01 * unit(rng)), fusion);
+    }
+    RegularizationConfig config;
+    config.enabled = true;
+    config.radius = radius;
+    config.min_neighbours = radius == 2 ? 4 : radius == 5 ? 8 : 150;
+    config.min_close_neighbours = config.min_neighbours;
+    const std::vector<DepthPoint> expected = RegularizeByScan(map, config, 2.0);
+    const std::size_t before = map.size();
+    std::size_t smoothed = 0;  // points the rule moves (so the comparison below means something)
+    for (const DepthPoint& e : expected)
+      smoothed += map.At(static_cast<int>(e.u), static_cast<int>(e.v))->rho != e.rho ? 1 : 0;
+    EXPECT_GT(smoothed, expected.size() / 2) << "radius " << radius;
+    map.Regularize(config, 2.0);
+    ASSERT_EQ(map.size(), expected.size()) << "radius " << radius;
+    EXPECT_LT(map.size(), before) << "radius " << radius;  // the outliers went
+    for (const DepthPoint& e : expected) {
+      const DepthPoint* got = map.At(static_cast<int>(e.u), static_cast<int>(e.v));
+      ASSERT_NE(got, nullptr) << e.u << "," << e.v;
+      EXPECT_EQ(got->rho, e.rho) << e.u << "," << e.v << " radius " << radius;
+    }
+  }
 }
 
 TEST(DepthFusion, FifoPoliciesAndPropagation) {

@@ -4,6 +4,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 
 namespace aavio::mapping {
@@ -137,59 +138,93 @@ void DepthMap::Clean(double max_stddev, int min_age, double rho_lo, double rho_h
 void DepthMap::Regularize(const RegularizationConfig& config, double compatibility_sigmas) {
   // Every point reads its neighbours from the map as it was before this pass: the new depths and
   // the removals are collected (points in parallel) and applied afterwards, in slot order.
-  const std::size_t n = points_.size();
   const int w = stereo_.width, h = stereo_.height, r = config.radius;
-  // Compatible(p, q) = |ρp − ρq| < k·σp or < k·σq: each point's k·σ once, not per pair.
-  std::vector<double> reach(n, 0.0);
-  for (std::size_t slot = 0; slot < n; ++slot)
-    if (Live(slot)) reach[slot] = compatibility_sigmas * std::sqrt(points_[slot].variance());
+  // The live points in row-major cell order, as columns. With one occupancy bitset per row, the
+  // occupied cells of a row between two columns are a contiguous run of this order (found by
+  // popcounts), so a window is visited as 2r + 1 runs in the order of a row-major scan.
+  const int words = (w + 63) / 64;
+  std::vector<std::uint64_t> occupied(static_cast<std::size_t>(h) * words, 0);
+  for (std::size_t slot = 0; slot < points_.size(); ++slot) {
+    if (!Live(slot)) continue;
+    const int x = cell_of_[slot] % w, y = cell_of_[slot] / w;
+    occupied[static_cast<std::size_t>(y) * words + (x >> 6)] |= std::uint64_t{1} << (x & 63);
+  }
+  // before_word[y·words + i]: occupied cells before word i of row y (all rows above included).
+  std::vector<std::int32_t> before_word(occupied.size() + 1, 0);
+  for (std::size_t i = 0; i < occupied.size(); ++i)
+    before_word[i + 1] = before_word[i] + std::popcount(occupied[i]);
+  const std::size_t n = static_cast<std::size_t>(before_word.back());
+  // Rank of cell (x, y), x in [0, w]: the number of occupied cells before it in row-major order.
+  auto rank = [&](int x, int y) {
+    const std::size_t word = static_cast<std::size_t>(y) * words + (x >> 6);
+    if (x == w) return before_word[static_cast<std::size_t>(y + 1) * words];
+    const std::uint64_t below = (std::uint64_t{1} << (x & 63)) - 1;
+    return before_word[word] + std::popcount(occupied[word] & below);
+  };
+  std::vector<std::int32_t> slot_of(n), x_of(n), y_of(n);
+  std::vector<double> rho(n), s2(n), nu(n), reach(n);
+  for (std::size_t slot = 0; slot < points_.size(); ++slot) {
+    if (!Live(slot)) continue;
+    const int x = cell_of_[slot] % w, y = cell_of_[slot] / w;
+    const auto k = static_cast<std::size_t>(rank(x, y));
+    const DepthPoint& p = points_[slot];
+    slot_of[k] = static_cast<std::int32_t>(slot);
+    x_of[k] = x;
+    y_of[k] = y;
+    rho[k] = p.rho;
+    s2[k] = p.s2;
+    nu[k] = p.nu;
+    // Compatible(p, q) = |ρp − ρq| < k·σp or < k·σq: each point's k·σ once, not per pair.
+    reach[k] = compatibility_sigmas * std::sqrt(p.variance());
+  }
   enum : char { kKeep, kFused, kRemove };
   std::vector<char> outcome(n, kKeep);
   std::vector<double> fused_rho(n, 0.0);
-  tbb::parallel_for(
-      tbb::blocked_range<std::size_t>(0, n, 256),
-      [&](const tbb::blocked_range<std::size_t>& range) {
-        std::vector<const DepthPoint*> close;
-        for (std::size_t slot = range.begin(); slot != range.end(); ++slot) {
-          if (!Live(slot)) continue;
-          const DepthPoint& p = points_[slot];
-          const int x = cell_of_[slot] % w, y = cell_of_[slot] / w;
-          int neighbours = 0;
-          close.clear();
-          for (int yy = std::max(0, y - r); yy <= std::min(h - 1, y + r); ++yy) {
-            const std::int32_t* row = index_.data() + static_cast<std::size_t>(yy) * w;
-            for (int xx = std::max(0, x - r); xx <= std::min(w - 1, x + r); ++xx) {
-              const std::int32_t q_slot = row[xx];
-              if (q_slot < 0 || (xx == x && yy == y)) continue;
-              const DepthPoint& q = points_[static_cast<std::size_t>(q_slot)];
-              ++neighbours;
-              const double d = std::abs(p.rho - q.rho);
-              if (d < reach[slot] || d < reach[static_cast<std::size_t>(q_slot)])
-                close.push_back(&q);
-            }
-          }
-          if (neighbours <= config.min_neighbours) continue;
-          if (static_cast<int>(close.size()) <= config.min_close_neighbours) {
-            outcome[slot] = kRemove;  // an outlier among many neighbours
-            continue;
-          }
-          // FuseStudentT over the compatible neighbours, keeping only what ρ depends on.
-          double rho = p.rho, s2 = p.s2, nu = p.nu;
-          for (const DepthPoint* q : close) {
-            const double sum = s2 + q->s2, d = rho - q->rho, nu_min = std::min(nu, q->nu);
-            rho = (q->s2 * rho + s2 * q->rho) / sum;
-            s2 = (nu_min + d * d / sum) / (nu_min + 1.0) * (s2 * q->s2 / sum);
-            nu = nu_min + 1.0;
-          }
-          outcome[slot] = kFused;
-          fused_rho[slot] = rho;
-        }
-      });
-  for (std::size_t slot = 0; slot < n; ++slot) {
-    if (outcome[slot] == kRemove)
-      Remove(static_cast<std::int32_t>(slot));
-    else if (outcome[slot] == kFused)
-      points_[slot].rho = fused_rho[slot];
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 256),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      std::vector<std::int32_t> close;
+                      for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                        const int x = x_of[i], y = y_of[i];
+                        const int x_lo = std::max(0, x - r), x_end = std::min(w, x + r + 1);
+                        int neighbours = -1;  // the point itself is in its own row's run
+                        close.clear();
+                        for (int yy = std::max(0, y - r); yy <= std::min(h - 1, y + r); ++yy) {
+                          const std::int32_t k_lo = rank(x_lo, yy), k_end = rank(x_end, yy);
+                          neighbours += k_end - k_lo;
+                          for (std::int32_t k = k_lo; k < k_end; ++k) {
+                            const double d = std::abs(rho[i] - rho[static_cast<std::size_t>(k)]);
+                            if ((d < reach[i] || d < reach[static_cast<std::size_t>(k)]) &&
+                                k != static_cast<std::int32_t>(i))
+                              close.push_back(k);
+                          }
+                        }
+                        if (neighbours <= config.min_neighbours) continue;
+                        if (static_cast<int>(close.size()) <= config.min_close_neighbours) {
+                          outcome[i] = kRemove;  // an outlier among many neighbours
+                          continue;
+                        }
+                        // FuseStudentT over the compatible neighbours, keeping only what ρ depends
+                        // on.
+                        double rho_f = rho[i], s2_f = s2[i], nu_f = nu[i];
+                        for (const std::int32_t k : close) {
+                          const auto q = static_cast<std::size_t>(k);
+                          const double sum = s2_f + s2[q], d = rho_f - rho[q],
+                                       nu_min = std::min(nu_f, nu[q]);
+                          rho_f = (s2[q] * rho_f + s2_f * rho[q]) / sum;
+                          s2_f = (nu_min + d * d / sum) / (nu_min + 1.0) * (s2_f * s2[q] / sum);
+                          nu_f = nu_min + 1.0;
+                        }
+                        outcome[i] = kFused;
+                        fused_rho[i] = rho_f;
+                      }
+                    });
+  // Applied in slot order (removals and new depths do not interact).
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto slot = static_cast<std::size_t>(slot_of[i]);
+    if (outcome[i] == kRemove)
+      Remove(slot_of[i]);
+    else if (outcome[i] == kFused)
+      points_[slot].rho = fused_rho[i];
   }
 }
 
