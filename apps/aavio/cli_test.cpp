@@ -216,7 +216,7 @@ TEST(Cli, RunMapsWithGroundTruthPosesAndScoresDepth) {
   EXPECT_NE(r.out.find("depth ("), std::string::npos) << r.out;
   std::ifstream in(std::filesystem::path(out) / "summary.json");
   const nlohmann::json j = nlohmann::json::parse(in);
-  EXPECT_GT(j["mapping_cycles"].get<int>(), 20);
+  EXPECT_GT(j["mapping_cycles"].get<int>(), 10);  // 1.5 s at the preset's 10 Hz
   EXPECT_GT(j["depth"]["points"].get<int>(), 1000);
   EXPECT_LT(j["depth"]["relative_median"].get<double>(), 0.1);  // a real map, not noise
   for (const char* stage : {"time_surface", "aa_map", "sampling", "matching", "depth_refinement",
