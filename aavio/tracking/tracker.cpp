@@ -125,7 +125,9 @@ TrackingResult Tracker::Track(const events::Observation& obs, const cv::Mat& val
   if (result.status == TrackingStatus::kOk) {
     const double gain = config_.velocity_gain;
     velocity_ = gain * (result.T_world_cur.t - T_prev_.t) + (1.0 - gain) * velocity_;
-  } else if (result.status != TrackingStatus::kLost) {
+  } else if (result.status == TrackingStatus::kLost) {
+    velocity_ *= config_.lost_velocity_decay;
+  } else {
     velocity_.setZero();
   }
   T_prevprev_ = result.status == TrackingStatus::kOk ? std::optional(T_prev_) : std::nullopt;

@@ -150,7 +150,8 @@ TEST(Tracker, DivergenceHoldsThePredictionAndReportsLost) {
 }
 
 // A lost tick coasts on the velocity of the tracked ones (a car does not stop because a
-// registration failed), and so does a restart that keeps it; a plain restart forgets it.
+// registration failed), and so does a restart that keeps it; a plain restart forgets it. With
+// lost_velocity_decay < 1 the velocity shrinks on each lost tick.
 TEST(Tracker, LostTicksCoastOnTheVelocity) {
   const std::vector<Eigen::Vector3d> map_points = EdgeMap(5);
   TrackingConfig config;  // the presets' steps
@@ -196,6 +197,19 @@ TEST(Tracker, LostTicksCoastOnTheVelocity) {
   // Without a map the velocity is forgotten afterwards, as after a plain restart.
   bad.t_ns = 60 * kNsPerMs;
   EXPECT_NEAR(tracker.Track(bad, bad_valid, {}).T_world_cur.t.x(), 5.0 * step, 1e-9);
+
+  // lost_velocity_decay 0 (the rpg preset): the first lost tick still coasts, then the pose holds.
+  config.lost_velocity_decay = 0.0;
+  Tracker holding(kCamera, config, imu::ImuConfig{}, Eigen::Matrix3d::Identity(), 1);
+  holding.Reset(0, geometry::RigidTransform());
+  holding.SetMap(map);
+  ASSERT_EQ(holding.Track(first, valid, {}).status, TrackingStatus::kOk);
+  bad.t_ns = 20 * kNsPerMs;
+  const TrackingResult first_lost = holding.Track(bad, bad_valid, {});
+  ASSERT_EQ(first_lost.status, TrackingStatus::kLost);
+  EXPECT_NEAR(first_lost.T_world_cur.t.x(), 2.0 * step, 1e-9);
+  bad.t_ns = 30 * kNsPerMs;
+  EXPECT_NEAR(holding.Track(bad, bad_valid, {}).T_world_cur.t.x(), 2.0 * step, 1e-9);
 }
 
 }  // namespace

@@ -21,9 +21,14 @@ struct TrackingConfig {
   double max_correction_deg = 3.0;
   double max_correction_m = 0.3;
   /// Translation prediction: the velocity per tick is v ← g·Δt + (1 − g)·v over tracked ticks
-  /// (reset to 0 when lost). 1 = constant velocity of the last tick ([ICRA]); smaller values
+  /// (reset to 0 without a map). 1 = constant velocity of the last tick ([ICRA]); smaller values
   /// average the registration's noise out of the prediction; 0 = zero motion ([ESVO]).
   double velocity_gain = 1.0;
+  /// aavio: on a lost tick the pose coasts on the velocity, which is then multiplied by this.
+  /// 1 keeps it (a car does not stop because a registration failed); 0 holds the pose from the
+  /// second lost tick on (hand-held: the velocity of the ticks before a loss is suspect — a
+  /// registration that jumped 2–5 cm a tick before failing sent the pose away at metres/second).
+  double lost_velocity_decay = 1.0;
   /// aavio: with the gyroscope prior, the registration also pays weight·‖δ‖² for the rotation δ
   /// [deg] between its estimate and the gyro-predicted rotation — a soft prior in units of the
   /// mean squared robust residual [TS levels² per deg²] (typically 10²–40² per point). 0 = the
@@ -43,6 +48,7 @@ struct TrackingConfig {
     v("max_correction_deg", max_correction_deg);
     v("max_correction_m", max_correction_m);
     v("velocity_gain", velocity_gain);
+    v("lost_velocity_decay", lost_velocity_decay);
     v("gyro_rotation_weight", gyro_rotation_weight);
   }
   Status Validate() const;
