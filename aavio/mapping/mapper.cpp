@@ -124,9 +124,8 @@ Status Mapper::Update(const PosedObservation& now, const PosedObservation* partn
     if (gu <= 0.01) gu = 0.1;
     if (gv <= 0.01) gv = 0.1;
     const bool horizontal = gu / gv < config_.eta;
-    if (horizontal && temporal) {
-      if (partner != nullptr) temporal_group.emplace_back(s.u, s.v);
-    } else {
+    if (horizontal && temporal && partner != nullptr) temporal_group.emplace_back(s.u, s.v);
+    if (!horizontal || !temporal || config_.temporal_stereo.also_static) {
       static_group.emplace_back(s.u, s.v);
       static_horizontal.push_back(horizontal ? 1 : 0);
     }

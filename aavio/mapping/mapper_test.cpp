@@ -11,8 +11,7 @@ namespace {
 
 // A fronto-parallel textured plane at disparity 16 px (z = f·b/16 = 20.1 m) seen by the stereo
 // pair: every cycle's map must hold that depth, from SGM first and then from matching + fusion.
-TEST(Mapper, MapsAPlaneFromSgmThenCycles) {
-  const RectifiedStereo stereo = testing::SmallStereo();
+std::shared_ptr<events::Observation> PlaneObservation() {
   auto obs = std::make_shared<events::Observation>();
   obs->t_ns = 0;
   cv::Mat left = testing::WaveTexture(160, 120, 7), right = testing::WaveTexture(160, 120, 7, 16.0);
@@ -25,6 +24,12 @@ TEST(Mapper, MapsAPlaneFromSgmThenCycles) {
     for (std::uint16_t u = 40; u < 150; u += 3)
       obs->samples.push_back({u, v, static_cast<float>(u), static_cast<float>(v), 2});
   }
+  return obs;
+}
+
+TEST(Mapper, MapsAPlaneFromSgmThenCycles) {
+  const RectifiedStereo stereo = testing::SmallStereo();
+  const std::shared_ptr<events::Observation> obs = PlaneObservation();
   MappingConfig config;
   config.bootstrap.min_points = 100;
   config.max_points = 5000;
@@ -55,6 +60,32 @@ TEST(Mapper, MapsAPlaneFromSgmThenCycles) {
   mapper.Reset();
   EXPECT_FALSE(mapper.initialized());
   EXPECT_EQ(mapper.local_map(), nullptr);
+}
+
+// The η split: near-horizontal samples go to temporal stereo only (the paper), or to both
+// (temporal_stereo.also_static); the others always to static stereo.
+TEST(Mapper, NearHorizontalSamplesGoToTemporalOrBoth) {
+  const RectifiedStereo stereo = testing::SmallStereo();
+  const std::shared_ptr<events::Observation> obs = PlaneObservation();
+  const cv::Mat valid(120, 160, CV_8UC1, cv::Scalar(255));
+  geometry::RigidTransform T_world_past;
+  T_world_past.t = {0.0, -0.5, 0.0};
+  const PosedObservation partner{obs, T_world_past};
+  MappingCycleReport split, both;
+  for (const bool also_static : {false, true}) {
+    MappingConfig config;
+    config.bootstrap.min_points = 100;
+    config.max_points = 5000;
+    config.temporal_stereo.also_static = also_static;
+    Mapper mapper(stereo, valid, config);
+    ASSERT_TRUE(mapper.Initialize({obs, {}}).ok());
+    ASSERT_TRUE(mapper.Update({obs, {}}, &partner, also_static ? &both : &split).ok());
+  }
+  EXPECT_GT(split.temporal_candidates, 20);  // the wave texture has near-horizontal edges
+  EXPECT_EQ(split.static_candidates + split.temporal_candidates, split.samples);
+  EXPECT_EQ(both.temporal_candidates, split.temporal_candidates);
+  EXPECT_EQ(both.static_candidates, both.samples);
+  EXPECT_GT(both.static_points, split.static_points);
 }
 
 }  // namespace
