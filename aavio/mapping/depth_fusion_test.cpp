@@ -204,16 +204,22 @@ TEST(DepthFusion, FifoPoliciesAndPropagation) {
   EXPECT_LE(by_points.stored_points(), 15u);  // ≤ 1.5 × max_points
 }
 
+// Edge samples on a 3-px grid inside the small stereo pair's overlap.
+std::vector<Eigen::Vector2f> SampleGrid() {
+  std::vector<Eigen::Vector2f> points;
+  for (int v = 20; v < 100; v += 3)
+    for (int u = 60; u < 140; u += 3)
+      points.emplace_back(u, v);
+  return points;
+}
+
 TEST(SgmBootstrap, DepthOfAShiftedTextureAndTooFewPoints) {
   const RectifiedStereo stereo = testing::SmallStereo();
   cv::Mat left8, right8;
   const cv::Mat left = testing::Texture(160, 120, 5);
   left.convertTo(left8, CV_8U);
   testing::Shifted(left, 16.0, 0.0).convertTo(right8, CV_8U);
-  std::vector<Eigen::Vector2f> points;
-  for (int v = 20; v < 100; v += 3)
-    for (int u = 60; u < 140; u += 3)
-      points.emplace_back(u, v);
+  const std::vector<Eigen::Vector2f> points = SampleGrid();
   MappingConfig config;
   config.bootstrap.min_points = 100;
   const Expected<std::vector<DepthPoint>> sgm =
@@ -238,10 +244,7 @@ TEST(SgmBootstrap, DropsPointsTooFarForTheirUncertainty) {
   left.convertTo(left8, CV_8U);
   testing::Shifted(left, 16.0, 0.0).convertTo(near8, CV_8U);
   testing::Shifted(left, 3.0, 0.0).convertTo(far8, CV_8U);
-  std::vector<Eigen::Vector2f> points;
-  for (int v = 20; v < 100; v += 3)
-    for (int u = 60; u < 140; u += 3)
-      points.emplace_back(u, v);
+  const std::vector<Eigen::Vector2f> points = SampleGrid();
   MappingConfig config;
   config.bootstrap.min_points = 100;
   config.bootstrap.inv_depth_stddev = 0.004;

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <memory>
+
 #include "aavio/geometry/rotation.hpp"
 #include "aavio/tracking/synthetic_scene.hpp"
 
@@ -157,11 +159,18 @@ TEST(Tracker, LostTicksCoastOnTheVelocity) {
   TrackingConfig config;  // the presets' steps
   config.max_iterations = 20;
   config.polish_iterations = 3;
-  Tracker tracker(kCamera, config, imu::ImuConfig{}, Eigen::Matrix3d::Identity(), 1);
-  tracker.Reset(0, geometry::RigidTransform());
   auto map = std::make_shared<TrackingMap>();
   map->points_world = map_points;
-  tracker.SetMap(map);
+  auto start = [&](double lost_velocity_decay) {
+    config.lost_velocity_decay = lost_velocity_decay;
+    auto t = std::make_unique<Tracker>(kCamera, config, imu::ImuConfig{},
+                                       Eigen::Matrix3d::Identity(), 1);
+    t->Reset(0, geometry::RigidTransform());
+    t->SetMap(map);
+    return t;
+  };
+  const std::unique_ptr<Tracker> coasting_tracker = start(1.0);
+  Tracker& tracker = *coasting_tracker;
   auto observe = [&](const geometry::RigidTransform& T, TimeNs t) {
     const testing::Images images = Render(map_points, T);
     events::Observation obs;
@@ -199,10 +208,8 @@ TEST(Tracker, LostTicksCoastOnTheVelocity) {
   EXPECT_NEAR(tracker.Track(bad, bad_valid, {}).T_world_cur.t.x(), 5.0 * step, 1e-9);
 
   // lost_velocity_decay 0 (the rpg preset): the first lost tick still coasts, then the pose holds.
-  config.lost_velocity_decay = 0.0;
-  Tracker holding(kCamera, config, imu::ImuConfig{}, Eigen::Matrix3d::Identity(), 1);
-  holding.Reset(0, geometry::RigidTransform());
-  holding.SetMap(map);
+  const std::unique_ptr<Tracker> holding_tracker = start(0.0);
+  Tracker& holding = *holding_tracker;
   ASSERT_EQ(holding.Track(first, valid, {}).status, TrackingStatus::kOk);
   bad.t_ns = 20 * kNsPerMs;
   const TrackingResult first_lost = holding.Track(bad, bad_valid, {});
