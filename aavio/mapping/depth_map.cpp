@@ -137,7 +137,7 @@ void DepthMap::Clean(double max_stddev, int min_age, double rho_lo, double rho_h
 
 void DepthMap::Regularize(const RegularizationConfig& config, double compatibility_sigmas) {
   // Every point reads its neighbours from the map as it was before this pass: the new depths and
-  // the removals are collected (points in parallel) and applied afterwards, in slot order.
+  // the removals are collected (points in parallel) and applied afterwards.
   const int w = stereo_.width, h = stereo_.height, r = config.radius;
   // The live points in row-major cell order, as columns. With one occupancy bitset per row, the
   // occupied cells of a row between two columns are a contiguous run of this order (found by
@@ -218,7 +218,7 @@ void DepthMap::Regularize(const RegularizationConfig& config, double compatibili
                         fused_rho[i] = rho_f;
                       }
                     });
-  // Applied in slot order (removals and new depths do not interact).
+  // Applied afterwards (removals and new depths do not interact, so the order does not matter).
   for (std::size_t i = 0; i < n; ++i) {
     const auto slot = static_cast<std::size_t>(slot_of[i]);
     if (outcome[i] == kRemove)
