@@ -44,6 +44,11 @@ TEST(PredictPose, ConstantVelocityAndGyroRotation) {
   TrackingConfig config;
   config.velocity_gain = 1.5;
   EXPECT_FALSE(config.Validate().ok());
+  config.velocity_gain = 0.3;
+  config.lost_velocity_decay = -0.1;
+  const Status bad_decay = config.Validate();
+  EXPECT_NE(bad_decay.message().find("lost_velocity_decay"), std::string::npos)
+      << bad_decay.message();
 }
 
 // The camera turns with a growing rate ω_y = 6t rad/s (constant velocity lags behind) and moves
