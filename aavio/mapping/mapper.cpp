@@ -60,6 +60,17 @@ const PosedObservation* FindTemporalPartner(std::span<const PosedObservation> hi
   return nullptr;
 }
 
+TemporalPartners FindTemporalPartners(std::span<const PosedObservation> history,
+                                      const geometry::RigidTransform& T_world_now,
+                                      const TemporalStereoConfig& config) {
+  TemporalPartners partners;
+  partners.main = FindTemporalPartner(history, T_world_now, config.min_translation_m);
+  if (partners.main == nullptr || config.cross_check_px <= 0.0) return partners;
+  const auto older = history.first(static_cast<std::size_t>(partners.main - history.data()));
+  partners.check = FindTemporalPartner(older, partners.main->T_world_obs, config.min_translation_m);
+  return partners;
+}
+
 Mapper::Mapper(const RectifiedStereo& stereo, const cv::Mat& valid_mask,
                const MappingConfig& config)
     : stereo_(stereo), valid_mask_(valid_mask), config_(config), fusion_(stereo, config) {}
@@ -99,7 +110,7 @@ Status Mapper::Initialize(const PosedObservation& now) {
 }
 
 Status Mapper::Update(const PosedObservation& now, const PosedObservation* partner,
-                      MappingCycleReport* report) {
+                      MappingCycleReport* report, const PosedObservation* check) {
   const auto start = Clock::now();
   *report = MappingCycleReport{};
   const events::Observation& obs = *now.obs;
@@ -156,8 +167,17 @@ Status Mapper::Update(const PosedObservation& now, const PosedObservation* partn
     aa_now = ToFloat(obs.aa_map, smooth_aa);
     aa_past = ToFloat(partner->obs->aa_map, smooth_aa);
     T_past_now = partner->T_world_obs.Inverse() * now.T_world_obs;
-    const std::vector<Match> temporal_matches = MatchTemporal(
-        {aa_now, aa_past, T_past_now, &obs.grad_u, &obs.grad_v}, temporal_group, stereo_, config_);
+    TemporalStereoInput input{aa_now, aa_past, T_past_now, &obs.grad_u, &obs.grad_v};
+    cv::Mat aa_check;
+    geometry::RigidTransform T_check_now;
+    if (check != nullptr) {
+      aa_check = ToFloat(check->obs->aa_map, smooth_aa);
+      T_check_now = check->T_world_obs.Inverse() * now.T_world_obs;
+      input.aa_check = &aa_check;
+      input.T_check_now = &T_check_now;
+    }
+    const std::vector<Match> temporal_matches =
+        MatchTemporal(input, temporal_group, stereo_, config_);
     report->temporal_matches = static_cast<int>(temporal_matches.size());
     matches.insert(matches.end(), temporal_matches.begin(), temporal_matches.end());
   }

@@ -30,6 +30,17 @@ const PosedObservation* FindTemporalPartner(std::span<const PosedObservation> hi
                                             const geometry::RigidTransform& T_world_now,
                                             double min_translation_m);
 
+/// Temporal stereo's partners: `main` as FindTemporalPartner with min_translation_m; `check`
+/// (only with cross_check_px > 0) the newest older observation at least min_translation_m from
+/// `main`. Either may be null.
+struct TemporalPartners {
+  const PosedObservation* main = nullptr;
+  const PosedObservation* check = nullptr;
+};
+TemporalPartners FindTemporalPartners(std::span<const PosedObservation> history,
+                                      const geometry::RigidTransform& T_world_now,
+                                      const TemporalStereoConfig& config);
+
 struct MappingCycleReport {
   int samples = 0;  ///< edge samples considered (after the cap and the border)
   int static_candidates = 0, temporal_candidates = 0;
@@ -47,9 +58,10 @@ class Mapper {
   bool initialized() const { return initialized_; }
   /// SGM on the observation's TS pair at its pose; FailedPrecondition if too few points.
   Status Initialize(const PosedObservation& now);
-  /// A mapping cycle; `partner` may be null (no temporal stereo this cycle).
+  /// A mapping cycle; `partner` may be null (no temporal stereo this cycle), `check` is the
+  /// cross-check partner (null: temporal matches are kept unchecked).
   Status Update(const PosedObservation& now, const PosedObservation* partner,
-                MappingCycleReport* report);
+                MappingCycleReport* report, const PosedObservation* check = nullptr);
   void Reset();
 
   LocalMapPtr local_map() const { return local_map_; }

@@ -43,6 +43,7 @@ Status TemporalStereoConfig::Validate() const {
       .NonNegative("max_relative_depth_error", max_relative_depth_error)
       .InRange("min_edge_angle_deg", min_edge_angle_deg, 0.0, 90.0)
       .InRange("uniqueness", uniqueness, 0.0, 1.0)
+      .NonNegative("cross_check_px", cross_check_px)
       .Positive("min_depth_m", min_depth_m)
       .Require(max_depth_m > min_depth_m, "max_depth_m",
                "= " + FieldChecker::Num(max_depth_m) + " must exceed min_depth_m (" +

@@ -69,6 +69,12 @@ struct TemporalStereoConfig {
   /// Reject a match when another local minimum along the segment comes this close to the best's
   /// correlation (aavio, as static_stereo.uniqueness; 0 = off).
   double uniqueness = 0.0;
+  /// Cross-check against a second partner (aavio; 0 = off): the newest observation at least
+  /// min_translation_m beyond the first partner is searched too, and a match is kept only if
+  /// both depths agree within this many pixels of matching error (the sum of both searches'
+  /// depth change per pixel); the depth is then their precision-weighted mean. A wrong match on
+  /// a repeated or ambiguous structure rarely lands on the same depth in two views.
+  double cross_check_px = 0.0;
   /// Culling of temporal estimates ([ESVO2] residual_vis_threshold_ln, stdVar_vis_threshold_ln):
   /// the AA residual differs from the TS one; ≤ 0 uses depth_refinement's thresholds.
   double residual_threshold = 0.0;
@@ -90,6 +96,7 @@ struct TemporalStereoConfig {
     v("max_relative_depth_error", max_relative_depth_error);
     v("min_edge_angle_deg", min_edge_angle_deg);
     v("uniqueness", uniqueness);
+    v("cross_check_px", cross_check_px);
     v("residual_threshold", residual_threshold);
     v("max_inv_depth_stddev", max_inv_depth_stddev);
     v("min_depth_m", min_depth_m);

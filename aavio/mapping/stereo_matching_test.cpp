@@ -194,6 +194,32 @@ TEST(TemporalStereo, UniquenessRejectsRepeatedStructure) {
   EXPECT_TRUE(scene.Matches(config).empty());
 }
 
+// The cross-check searches a second, older view (0.6 m away) independently: one consistent with
+// the plane at 10 m keeps the matches (and their depth); one showing the structure where a plane
+// at 7 m would be rejects every match, though the first partner alone accepts them.
+TEST(TemporalStereo, CrossCheckKeepsOnlyDepthsASecondViewConfirms) {
+  const StripedPlane scene;
+  MappingConfig config = Config();
+  const std::size_t unchecked = scene.Matches(config).size();
+  ASSERT_GT(unchecked, scene.points.size() / 2);
+  config.temporal_stereo.cross_check_px = 1.0;
+  geometry::RigidTransform T_check_now;
+  T_check_now.t = {0.0, 0.6, 0.0};
+  auto checked = [&](double check_depth_m) {
+    const cv::Mat aa_check =
+        testing::Shifted(scene.aa_now, 0.0, -scene.stereo.f * 0.6 / check_depth_m);
+    TemporalStereoInput input{scene.aa_now, scene.aa_past, scene.T_past_now};
+    input.aa_check = &aa_check;
+    input.T_check_now = &T_check_now;
+    return MatchTemporal(input, scene.points, scene.stereo, config);
+  };
+  const std::vector<Match> consistent = checked(10.0);
+  EXPECT_GE(consistent.size(), unchecked * 9 / 10);
+  for (const Match& m : consistent)
+    EXPECT_NEAR(1.0 / m.rho, 10.0, 10.0 * 0.5 / scene.shift);
+  EXPECT_TRUE(checked(7.0).empty());
+}
+
 TEST(DepthRefinement, RecoversSubPixelDisparityAndItsUncertainty) {
   const RectifiedStereo stereo = testing::SmallStereo();
   const double d = 20.37;

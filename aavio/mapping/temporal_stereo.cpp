@@ -5,6 +5,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "aavio/mapping/zncc.hpp"
@@ -42,6 +43,93 @@ namespace {
 
 constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
 
+// The best match of a prepared patch of the current AA map along the epipolar segment of the
+// depth range in one past AA map, with its triangulated depth and that depth's change for one
+// pixel of matching error along the segment.
+struct SegmentMatch {
+  double cost = 1.0;
+  double z = 0.0;
+  double dz_per_px = 0.0;
+};
+
+bool SearchSegment(const NormalizedPatch& patch, const cv::Mat& aa_past,
+                   const geometry::RigidTransform& T_past_now, const Eigen::Vector2f& x,
+                   const int u, const int v, const TemporalStereoInput& in,
+                   const RectifiedStereo& stereo, const MappingConfig& config, double rho_lo,
+                   double rho_hi, SegmentMatch* out) {
+  const TemporalStereoConfig& t = config.temporal_stereo;
+  const int hr = t.patch_rows / 2, hc = t.patch_cols / 2;
+  const int w = aa_past.cols, h = aa_past.rows;
+  const int stride = static_cast<int>(aa_past.step1());
+  // The epipolar segment: projections of the farthest and the nearest allowed depth.
+  double u_far, v_far, u_near, v_near;
+  if (!stereo.Project(T_past_now * stereo.Backproject(x.x(), x.y(), rho_lo), &u_far, &v_far) ||
+      !stereo.Project(T_past_now * stereo.Backproject(x.x(), x.y(), rho_hi), &u_near, &v_near)) {
+    return false;
+  }
+  const double du = u_near - u_far, dv = v_near - v_far;
+  const double length = std::max(std::abs(du), std::abs(dv));
+  // Too little parallax over the whole depth range: depth would be mostly quantisation noise.
+  if (length < t.min_parallax_px) return false;
+  // The edge (perpendicular to the TS gradient) must cross the segment: sin of the angle between
+  // them = |segment · gradient| / (|segment| |gradient|).
+  if (t.min_edge_angle_deg > 0.0 && in.grad_u != nullptr && in.grad_v != nullptr) {
+    const double gu = in.grad_u->at<float>(v, u), gv = in.grad_v->at<float>(v, u);
+    const double norms = std::hypot(du, dv) * std::hypot(gu, gv);
+    if (!(std::abs(du * gu + dv * gv) >= std::sin(t.min_edge_angle_deg * kDegToRad) * norms))
+      return false;
+  }
+  // One candidate per pixel along the segment's major axis, at whole pixels of it (so the steps
+  // are uniform and the parabola below is unbiased); the other coordinate is rounded.
+  const bool along_u = std::abs(du) >= std::abs(dv);
+  const double major_far = along_u ? u_far : v_far, major_len = along_u ? du : dv;
+  const double sign = major_len >= 0.0 ? 1.0 : -1.0;
+  const double first = std::round(major_far);
+  const int steps = static_cast<int>(std::floor(std::abs(major_far + major_len - first)));
+  auto s_of = [&](double k) { return (first + sign * k - major_far) / major_len; };
+  std::vector<double> costs(static_cast<std::size_t>(steps + 1), 1.0);
+  int best_k = -1;
+  for (int k = 0; k <= steps; ++k) {
+    const double s = s_of(k);
+    const int uc = static_cast<int>(std::lround(u_far + s * du));
+    const int vc = static_cast<int>(std::lround(v_far + s * dv));
+    if (uc - hc < 0 || uc + hc >= w || vc - hr < 0 || vc + hr >= h) continue;
+    const double e = ZnccCost(patch, aa_past.ptr<float>(vc - hr) + (uc - hc), stride);
+    if (e <= 0.0) continue;  // exact zeros are ignored (reference)
+    costs[static_cast<std::size_t>(k)] = e;
+    if (best_k < 0 || e < costs[static_cast<std::size_t>(best_k)]) best_k = k;
+  }
+  if (best_k < 0) return false;
+  const double best = costs[static_cast<std::size_t>(best_k)];
+  if (best >= t.threshold_factor * config.static_stereo.zncc_threshold) return false;
+  if (t.uniqueness > 0.0 && HasRivalMinimum(costs.data(), steps + 1, best_k, t.uniqueness))
+    return false;
+  // Sub-sample position along the segment: the vertex of the parabola through the best cost and
+  // its neighbours.
+  double k_star = best_k;
+  if (best_k > 0 && best_k < steps) {
+    const double a = costs[static_cast<std::size_t>(best_k - 1)],
+                 c = costs[static_cast<std::size_t>(best_k + 1)];
+    const double curvature = a - 2.0 * best + c;
+    if (curvature > 1e-9 && a < 1.0 && c < 1.0)
+      k_star += std::clamp(0.5 * (a - c) / curvature, -0.5, 0.5);
+  }
+  const double s_star = s_of(k_star);
+  const Eigen::Vector2d best_x(u_far + s_star * du, v_far + s_star * dv);
+  const double z = TriangulateDepth(stereo, {x.x(), x.y()}, best_x, T_past_now);
+  if (z < t.min_depth_m || z > t.max_depth_m) return false;
+  // The depth's change for one pixel of matching error along the segment.
+  const double one_px = 1.0 / length;
+  const Eigen::Vector2d dir(du, dv);
+  const double z_a = TriangulateDepth(stereo, {x.x(), x.y()}, best_x - one_px * dir, T_past_now);
+  const double z_b = TriangulateDepth(stereo, {x.x(), x.y()}, best_x + one_px * dir, T_past_now);
+  // Rays that no longer meet one pixel away: unbounded sensitivity.
+  const double dz_per_px = z_a <= 0.0 || z_b <= 0.0 ? std::numeric_limits<double>::infinity()
+                                                    : 0.5 * std::abs(z_b - z_a);
+  *out = {best, z, dz_per_px};
+  return true;
+}
+
 bool MatchOne(const TemporalStereoInput& in, const Eigen::Vector2f& x,
               const RectifiedStereo& stereo, const MappingConfig& config, double rho_lo,
               double rho_hi, Match* out) {
@@ -62,72 +150,34 @@ bool MatchOne(const TemporalStereoInput& in, const Eigen::Vector2f& x,
   NormalizedPatch patch;
   if (!PreparePatch(source, stride, t.patch_rows, t.patch_cols, &patch)) return false;
 
-  // The epipolar segment: projections of the farthest and the nearest allowed depth.
-  double u_far, v_far, u_near, v_near;
-  if (!stereo.Project(in.T_past_now * stereo.Backproject(x.x(), x.y(), rho_lo), &u_far, &v_far) ||
-      !stereo.Project(in.T_past_now * stereo.Backproject(x.x(), x.y(), rho_hi), &u_near, &v_near)) {
+  SegmentMatch m;
+  if (!SearchSegment(patch, in.aa_past, in.T_past_now, x, u, v, in, stereo, config, rho_lo, rho_hi,
+                     &m)) {
     return false;
   }
-  const double du = u_near - u_far, dv = v_near - v_far;
-  const double length = std::max(std::abs(du), std::abs(dv));
-  // Too little parallax over the whole depth range: depth would be mostly quantisation noise.
-  if (length < t.min_parallax_px) return false;
-  // The edge (perpendicular to the TS gradient) must cross the segment: sin of the angle between
-  // them = |segment · gradient| / (|segment| |gradient|).
-  if (t.min_edge_angle_deg > 0.0 && in.grad_u != nullptr && in.grad_v != nullptr) {
-    const double gu = in.grad_u->at<float>(v, u), gv = in.grad_v->at<float>(v, u);
-    const double norms = std::hypot(du, dv) * std::hypot(gu, gv);
-    if (!(std::abs(du * gu + dv * gv) >= std::sin(t.min_edge_angle_deg * kDegToRad) * norms))
-      return false;
-  }
-  const int steps = static_cast<int>(std::ceil(length));
-  std::vector<double> costs(static_cast<std::size_t>(steps + 1), 1.0);
-  int best_k = -1;
-  for (int k = 0; k <= steps; ++k) {
-    const double s = static_cast<double>(k) / steps;
-    const int uc = static_cast<int>(std::lround(u_far + s * du));
-    const int vc = static_cast<int>(std::lround(v_far + s * dv));
-    if (uc - hc < 0 || uc + hc >= w || vc - hr < 0 || vc + hr >= h) continue;
-    const double e = ZnccCost(patch, in.aa_past.ptr<float>(vc - hr) + (uc - hc), stride);
-    if (e <= 0.0) continue;  // exact zeros are ignored (reference)
-    costs[static_cast<std::size_t>(k)] = e;
-    if (best_k < 0 || e < costs[static_cast<std::size_t>(best_k)]) best_k = k;
-  }
-  if (best_k < 0) return false;
-  const double best = costs[static_cast<std::size_t>(best_k)];
-  if (best >= t.threshold_factor * config.static_stereo.zncc_threshold) return false;
-  if (t.uniqueness > 0.0 && HasRivalMinimum(costs.data(), steps + 1, best_k, t.uniqueness))
+  // Conditioning: one pixel of matching error may not move the depth by more than
+  // max_relative_depth_error (parallax too small for this depth otherwise).
+  if (t.max_relative_depth_error > 0.0 && !(m.dz_per_px / m.z <= t.max_relative_depth_error))
     return false;
-  // Sub-sample position along the segment: the vertex of the parabola through the best cost and
-  // its neighbours.
-  double k_star = best_k;
-  if (best_k > 0 && best_k < steps) {
-    const double a = costs[static_cast<std::size_t>(best_k - 1)],
-                 c = costs[static_cast<std::size_t>(best_k + 1)];
-    const double curvature = a - 2.0 * best + c;
-    if (curvature > 1e-9 && a < 1.0 && c < 1.0)
-      k_star += std::clamp(0.5 * (a - c) / curvature, -0.5, 0.5);
-  }
-  const double s_star = k_star / steps;
-  const Eigen::Vector2d best_x(u_far + s_star * du, v_far + s_star * dv);
-  const double z = TriangulateDepth(stereo, {x.x(), x.y()}, best_x, in.T_past_now);
-  if (z < t.min_depth_m || z > t.max_depth_m) return false;
-  // Conditioning: one pixel of matching error along the segment may not move the depth by more
-  // than max_relative_depth_error (parallax too small for this depth otherwise).
-  if (t.max_relative_depth_error > 0.0) {
-    const double one_px = 1.0 / length;
-    const Eigen::Vector2d dir(du, dv);
-    const double z_a =
-        TriangulateDepth(stereo, {x.x(), x.y()}, best_x - one_px * dir, in.T_past_now);
-    const double z_b =
-        TriangulateDepth(stereo, {x.x(), x.y()}, best_x + one_px * dir, in.T_past_now);
-    if (z_a <= 0.0 || z_b <= 0.0 || 0.5 * std::abs(z_b - z_a) / z > t.max_relative_depth_error) {
+  double rho = 1.0 / m.z;
+  if (in.aa_check != nullptr) {
+    // Cross-check (aavio): an independent search in a second, older view must find the same
+    // depth within cross_check_px pixels of matching error (summed over both searches); then
+    // the two are averaged in inverse depth, weighted by their per-pixel precision.
+    SegmentMatch c;
+    if (!SearchSegment(patch, *in.aa_check, *in.T_check_now, x, u, v, in, stereo, config, rho_lo,
+                       rho_hi, &c)) {
       return false;
     }
+    const double d_rho_m = m.dz_per_px / (m.z * m.z), d_rho_c = c.dz_per_px / (c.z * c.z);
+    const double rho_c = 1.0 / c.z;
+    if (!std::isfinite(d_rho_m) || !std::isfinite(d_rho_c)) return false;
+    if (std::abs(rho - rho_c) > t.cross_check_px * (d_rho_m + d_rho_c)) return false;
+    const double w_m = 1.0 / (d_rho_m * d_rho_m), w_c = 1.0 / (d_rho_c * d_rho_c);
+    rho = (w_m * rho + w_c * rho_c) / (w_m + w_c);
   }
-  const double rho = 1.0 / z;
   if (rho < config.inv_depth_min || rho > config.inv_depth_max) return false;
-  *out = {x.x(), x.y(), rho, best, StereoKind::kTemporal, true};
+  *out = {x.x(), x.y(), rho, m.cost, StereoKind::kTemporal, true};
   return true;
 }
 

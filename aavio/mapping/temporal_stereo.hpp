@@ -4,8 +4,9 @@
 /// the nearest and farthest allowed depth (not the reference code's fixed −10…70 px), with a
 /// wide flat patch (5 rows × 31 columns) suited to edges parallel to the baseline; the best match
 /// under threshold_factor·θ is triangulated (midpoint of the two rays) and gated by depth.
-/// aavio's optional tests: the edge must cross the segment at min_edge_angle_deg or more, and the
-/// best match must be unique along it.
+/// aavio's optional tests: the edge must cross the segment at min_edge_angle_deg or more, the
+/// best match must be unique along it, and an independent search in a second, older partner must
+/// find the same depth (cross_check_px; the two are then averaged).
 
 #include <opencv2/core/mat.hpp>
 #include <span>
@@ -24,6 +25,9 @@ struct TemporalStereoInput {
   /// Gradient of the current negative TS (CV_32FC1), for the edge-angle test; null = no test.
   const cv::Mat* grad_u = nullptr;
   const cv::Mat* grad_v = nullptr;
+  /// A second, older partner for the cross-check (CV_32FC1 AA map and its pose); null = none.
+  const cv::Mat* aa_check = nullptr;
+  const geometry::RigidTransform* T_check_now = nullptr;
 };
 
 /// The inverse-depth interval temporal stereo searches: the configured range ∩ the depth gate.

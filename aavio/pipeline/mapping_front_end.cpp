@@ -58,9 +58,9 @@ Status MappingFrontEnd::Tick(TimeNs t_ns) {
       const Status init = mapper_.Initialize(now);
       cycle.bootstrap = init.ok();
     } else {
-      const mapping::PosedObservation* partner = mapping::FindTemporalPartner(
-          history_, *pose, config_.mapping.temporal_stereo.min_translation_m);
-      AAVIO_RETURN_IF_ERROR(mapper_.Update(now, partner, &cycle.report));
+      const mapping::TemporalPartners partners =
+          mapping::FindTemporalPartners(history_, *pose, config_.mapping.temporal_stereo);
+      AAVIO_RETURN_IF_ERROR(mapper_.Update(now, partners.main, &cycle.report, partners.check));
     }
     cycle.map = mapper_.local_map();
     if (cycle.map && on_cycle) on_cycle(cycle);

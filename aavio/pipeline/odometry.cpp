@@ -136,24 +136,26 @@ Status Odometry::Tick(TimeNs t_ns) {
   } else if (tracked.status == tracking::TrackingStatus::kOk) {
     lost_ticks_ = 0;
     if (ticks_ % ticks_per_cycle_ == 0) {
-      const mapping::PosedObservation* partner = mapping::FindTemporalPartner(
-          history_, tracked.T_world_cur, config_.mapping.temporal_stereo.min_translation_m);
+      const mapping::TemporalPartners partners = mapping::FindTemporalPartners(
+          history_, tracked.T_world_cur, config_.mapping.temporal_stereo);
       const bool on_thread = config_.pipeline.real_time || config_.pipeline.concurrent_mapping;
       if (!on_thread) {
-        AAVIO_RETURN_IF_ERROR(mapper_.Update(now, partner, &tick.mapping));
+        AAVIO_RETURN_IF_ERROR(mapper_.Update(now, partners.main, &tick.mapping, partners.check));
         tick.mapped = true;
         tick.map = mapper_.local_map();
         PublishToTracking(tick.map);
       } else if (pending_cycle_.valid()) {
         tick.mapping_skipped = true;  // the last cycle still runs: this one is dropped
       } else {
-        // The observation and partner by value: history_ may drop the partner meanwhile.
-        std::optional<mapping::PosedObservation> partner_copy;
-        if (partner) partner_copy = *partner;
+        // The observation and partners by value: history_ may drop them meanwhile.
+        std::optional<mapping::PosedObservation> partner_copy, check_copy;
+        if (partners.main) partner_copy = *partners.main;
+        if (partners.check) check_copy = *partners.check;
         pending_cycle_tick_ = ticks_;
-        pending_cycle_ = std::async(std::launch::async, [this, now, partner_copy] {
+        pending_cycle_ = std::async(std::launch::async, [this, now, partner_copy, check_copy] {
           CycleResult r;
-          r.status = mapper_.Update(now, partner_copy ? &*partner_copy : nullptr, &r.report);
+          r.status = mapper_.Update(now, partner_copy ? &*partner_copy : nullptr, &r.report,
+                                    check_copy ? &*check_copy : nullptr);
           r.map = mapper_.local_map();
           return r;
         });
