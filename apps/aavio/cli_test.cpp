@@ -224,6 +224,18 @@ TEST(Cli, RunMapsWithGroundTruthPosesAndScoresDepth) {
     EXPECT_TRUE(j["stages"].contains(stage)) << stage;
   }
   EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(out) / "config.yaml"));
+  // Without --preset, mapping alone takes the preset of the camera's resolution, as the odometry
+  // does (it ran on the defaults before).
+  const std::string auto_out = (dir / "run_auto").string();
+  r = RunAavio(
+      {"run", seq, "--gt-poses", "--out", auto_out, "--set", "mapping.bootstrap.min_points=100"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  EXPECT_NE(r.err.find("no --preset given; using 'rpg'"), std::string::npos) << r.err;
+  std::ifstream config(std::filesystem::path(auto_out) / "config.yaml");
+  std::ostringstream config_text;
+  config_text << config.rdbuf();
+  EXPECT_NE(config_text.str().find("from: preset rpg + --set"), std::string::npos)
+      << config_text.str();
   // A sequence without ground truth: the error names what is missing.
   testing::WriteFile(dir / "seq" / "no_gt.yaml",
                      "calibration: calibration\nevents:\n  left: events/left/events.h5\n  right: "

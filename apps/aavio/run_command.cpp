@@ -86,16 +86,18 @@ const std::vector<std::string> kEsvoOverrides = {
     "mapping.static_stereo.uniqueness=0",
     "mapping.static_stereo.left_right_tolerance_px=-1"};
 
-Status RunFull(RunOptions options, OpenedSequence& opened, Context& ctx) {
-  if (options.config.preset.empty()) {
-    // No preset named: the one for this camera's resolution.
-    options.config.preset = opened.calibration.rig.width() <= 400 ? "rpg" : "dsec";
-    if (!options.quiet) {
-      ctx.err << "aavio run: no --preset given; using '" << options.config.preset << "' for "
-              << opened.calibration.rig.width() << "x" << opened.calibration.rig.height()
-              << " cameras\n";
-    }
+// No preset named: the one for this camera's resolution (every mode of `aavio run`).
+void ChoosePreset(const OpenedSequence& opened, RunOptions* options, Context& ctx) {
+  if (!options->config.preset.empty()) return;
+  options->config.preset = opened.calibration.rig.width() <= 400 ? "rpg" : "dsec";
+  if (!options->quiet) {
+    ctx.err << "aavio run: no --preset given; using '" << options->config.preset << "' for "
+            << opened.calibration.rig.width() << "x" << opened.calibration.rig.height()
+            << " cameras\n";
   }
+}
+
+Status RunFull(RunOptions options, OpenedSequence& opened, Context& ctx) {
   if (options.esvo) {
     options.config.overrides.insert(options.config.overrides.begin(), kEsvoOverrides.begin(),
                                     kEsvoOverrides.end());
@@ -133,10 +135,11 @@ Status RunFull(RunOptions options, OpenedSequence& opened, Context& ctx) {
   return result.status();
 }
 
-Status Run(const RunOptions& options, Context& ctx) {
+Status Run(RunOptions options, Context& ctx) {
   const auto wall_start = std::chrono::steady_clock::now();
   Expected<OpenedSequence> opened = OpenSequence(options.sequence, options.calibration);
   if (!opened) return opened.status();
+  ChoosePreset(*opened, &options, ctx);
   if (!options.gt_poses && !options.gt_map) return RunFull(options, *opened, ctx);
   Expected<pipeline::OdometryConfig> config = ResolveOdometryConfig(options.config);
   if (!config) return config.status();
