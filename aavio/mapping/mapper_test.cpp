@@ -90,3 +90,34 @@ TEST(Mapper, NearHorizontalSamplesGoToTemporalOrBoth) {
 
 }  // namespace
 }  // namespace aavio::mapping
+
+namespace aavio::mapping {
+namespace {
+
+// Observations 0.3 m apart along x (oldest first): the partner is the newest at least
+// min_translation_m from now, the check partner the newest older one at least as far again.
+TEST(Mapper, FindsTheTemporalPartnerAndTheCrossCheckPartner) {
+  std::vector<PosedObservation> history(6);
+  for (int i = 0; i < 6; ++i)
+    history[static_cast<std::size_t>(i)].T_world_obs.t = {0.3 * i, 0.0, 0.0};
+  geometry::RigidTransform now;
+  now.t = {1.8, 0.0, 0.0};  // 0.3 m beyond the newest
+  TemporalStereoConfig config;
+  config.min_translation_m = 0.5;
+  TemporalPartners partners = FindTemporalPartners(history, now, config);
+  EXPECT_EQ(partners.main, &history[4]);  // 0.6 m back
+  EXPECT_EQ(partners.check, nullptr);     // cross-check off
+  config.cross_check_px = 1.0;
+  partners = FindTemporalPartners(history, now, config);
+  EXPECT_EQ(partners.main, &history[4]);
+  EXPECT_EQ(partners.check, &history[2]);  // 0.6 m beyond the partner
+  config.min_translation_m = 1.0;
+  partners = FindTemporalPartners(history, now, config);
+  EXPECT_EQ(partners.main, &history[2]);  // 1.2 m back
+  EXPECT_EQ(partners.check, nullptr);     // nothing 1 m beyond it
+  now.t = {0.6, 0.0, 0.0};                // every observation within 0.9 m
+  EXPECT_EQ(FindTemporalPartners(history, now, config).main, nullptr);
+}
+
+}  // namespace
+}  // namespace aavio::mapping
