@@ -6,6 +6,7 @@
 
 #include "aavio/mapping/depth_refinement.hpp"
 #include "aavio/mapping/edge_snapping.hpp"
+#include "aavio/mapping/out_of_view_check.hpp"
 #include "aavio/mapping/sgm_bootstrap.hpp"
 #include "aavio/mapping/static_stereo.hpp"
 #include "aavio/mapping/temporal_stereo.hpp"
@@ -158,6 +159,11 @@ Status Mapper::Update(const PosedObservation& now, const PosedObservation* partn
         matches[k++].near_horizontal = static_horizontal[i] != 0;
       }
     }
+  }
+  if (config_.static_stereo.out_of_view_radius_px > 0 && local_map_) {
+    DropOutOfViewMatches(*local_map_, now.T_world_obs, stereo_,
+                         config_.static_stereo.patch_width / 2,
+                         config_.static_stereo.out_of_view_radius_px, &matches);
   }
   report->static_matches = static_cast<int>(matches.size());
   cv::Mat aa_now, aa_past;

@@ -26,7 +26,8 @@ Status StaticStereoConfig::Validate() const {
                "= " + FieldChecker::Num(zncc_threshold) + " must be in (0, 1] (cost ½(1 − ZNCC))")
       .InRange("empty_patch_fraction", empty_patch_fraction, 0.0, 1.0)
       .InRange("uniqueness", uniqueness, 0.0, 1.0)
-      .InRange("left_right_tolerance_px", left_right_tolerance_px, -1, 100);
+      .InRange("left_right_tolerance_px", left_right_tolerance_px, -1, 100)
+      .InRange("out_of_view_radius_px", out_of_view_radius_px, 0, 50);
   return check.status();
 }
 

@@ -25,6 +25,11 @@ struct StaticStereoConfig {
   /// aavio: match the right patch back along the left row; reject unless it lands within this
   /// many pixels of the left point (a left-right consistency check); < 0 = off, as the reference.
   int left_right_tolerance_px = -1;
+  /// aavio (0 = off): drop a match when the previous map holds, within this many pixels, a
+  /// surface so near that the pixel's true match lies outside the right image, and the match is
+  /// over 20 % farther than that surface (out_of_view_check.hpp). Near the left border the
+  /// search cannot reach the true disparity and settles on another edge.
+  int out_of_view_radius_px = 0;
 
   template <typename V>
   void VisitFields(V&& v) {
@@ -38,6 +43,7 @@ struct StaticStereoConfig {
     v("empty_patch_fraction", empty_patch_fraction);
     v("uniqueness", uniqueness);
     v("left_right_tolerance_px", left_right_tolerance_px);
+    v("out_of_view_radius_px", out_of_view_radius_px);
   }
   Status Validate() const;
 };
