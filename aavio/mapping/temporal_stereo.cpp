@@ -171,7 +171,9 @@ bool MatchOne(const TemporalStereoInput& in, const Eigen::Vector2f& x,
     }
     const double d_rho_m = m.dz_per_px / (m.z * m.z), d_rho_c = c.dz_per_px / (c.z * c.z);
     const double rho_c = 1.0 / c.z;
-    if (!std::isfinite(d_rho_m) || !std::isfinite(d_rho_c)) return false;
+    // Both precisions finite and non-zero (a zero one would take all the weight).
+    if (!(d_rho_m > 0.0 && d_rho_c > 0.0 && std::isfinite(d_rho_m) && std::isfinite(d_rho_c)))
+      return false;
     if (std::abs(rho - rho_c) > t.cross_check_px * (d_rho_m + d_rho_c)) return false;
     const double w_m = 1.0 / (d_rho_m * d_rho_m), w_c = 1.0 / (d_rho_c * d_rho_c);
     rho = (w_m * rho + w_c * rho_c) / (w_m + w_c);

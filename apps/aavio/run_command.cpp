@@ -73,18 +73,20 @@ extern "C" void OnInterrupt(int) { g_interrupted.store(true); }
 // The ESVO-like configuration (ESVO's newest-event selection of 10k points, static stereo only,
 // no IMU prior, its zero-motion prediction and 10 LM steps, none of aavio's additions), so that
 // the paper's comparisons run on the same data; later --set still apply.
-const std::vector<std::string> kEsvoOverrides = {"edge_sampling.mode=newest_events",
-                                                 "edge_sampling.num_points=10000",
-                                                 "mapping.max_points=10000",
-                                                 "mapping.temporal_stereo.enabled=false",
-                                                 "imu.use_gyro_prior=false",
-                                                 "mapping.snap_to_edge_px=0",
-                                                 "tracking.max_iterations=10",
-                                                 "tracking.polish_iterations=0",
-                                                 "tracking.velocity_gain=0",
-                                                 "mapping.static_stereo.uniqueness=0",
-                                                 "mapping.static_stereo.left_right_tolerance_px=-1",
-                                                 "mapping.static_stereo.out_of_view_radius_px=0"};
+const std::vector<std::string> kEsvoOverrides = {
+    "edge_sampling.mode=newest_events",
+    "edge_sampling.num_points=10000",
+    "mapping.max_points=10000",
+    "mapping.temporal_stereo.enabled=false",
+    "imu.use_gyro_prior=false",
+    "mapping.snap_to_edge_px=0",
+    "tracking.max_iterations=10",
+    "tracking.polish_iterations=0",
+    "tracking.velocity_gain=0",
+    "mapping.static_stereo.uniqueness=0",
+    "mapping.static_stereo.left_right_tolerance_px=-1",
+    "mapping.static_stereo.out_of_view_radius_px=0",
+};
 
 // No preset named: the one for this camera's resolution (every mode of `aavio run`).
 void ChoosePreset(const OpenedSequence& opened, RunOptions* options, Context& ctx) {
