@@ -46,6 +46,9 @@ void DepthErrorAccumulator::Add(const std::vector<Eigen::Vector3d>& points_world
     const double error = std::abs(p.z() - z_gt);
     errors_.push_back(error);
     relative_.push_back(error / z_gt);
+    true_depth_sum_ += z_gt;
+    if (camera_.fb_px_m > 0.0)
+      disparity_errors_.push_back(camera_.fb_px_m * std::abs(1.0 / p.z() - 1.0 / z_gt));
     if (!gt_edges.empty() && gt_edges.at<std::uint8_t>(vi, ui) == 255) {
       ++horizontal_points_;
       relative_horizontal_sum_ += error / z_gt;
@@ -85,9 +88,18 @@ DepthErrorSummary DepthErrorAccumulator::Summary() const {
     std::vector<double> rel = relative_;
     std::nth_element(rel.begin(), rel.begin() + rel.size() / 2, rel.end());
     s.relative_median = rel[rel.size() / 2];
+    s.mean_true_depth_m = true_depth_sum_ / errors_.size();
     s.outliers = static_cast<double>(std::count_if(relative_.begin(), relative_.end(),
                                                    [](double r) { return r > 0.1; })) /
                  relative_.size();
+  }
+  if (!disparity_errors_.empty()) {
+    s.disparity_error_px =
+        std::accumulate(disparity_errors_.begin(), disparity_errors_.end(), 0.0) /
+        disparity_errors_.size();
+    std::vector<double> d = disparity_errors_;
+    std::nth_element(d.begin(), d.begin() + d.size() / 2, d.end());
+    s.disparity_error_median_px = d[d.size() / 2];
   }
   auto share = [](std::size_t a, std::size_t b) {
     return b == 0 ? 0.0 : static_cast<double>(a) / b;

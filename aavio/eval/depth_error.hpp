@@ -15,10 +15,12 @@
 
 namespace aavio::eval {
 
-/// A rectified pinhole camera: the one ground-truth depth maps are drawn in.
+/// A rectified pinhole camera: the one ground-truth depth maps are drawn in. With the stereo
+/// pair's f·b the errors are also given in disparity, which does not grow with the scene's depth.
 struct PinholeCamera {
   int width = 0, height = 0;
   double f = 0.0, cx = 0.0, cy = 0.0;
+  double fb_px_m = 0.0;  ///< focal length × baseline [px·m]; 0: no disparity errors
 };
 
 /// A pixel is on a depth discontinuity when the largest and the smallest ground-truth depth of
@@ -32,6 +34,11 @@ struct DepthErrorSummary {
   double relative = 0.0;         ///< mean of |Δz| / z_gt
   double relative_median = 0.0;  ///< median of |Δz| / z_gt
   double outliers = 0.0;         ///< share of points with |Δz| / z_gt > 10 %
+  /// Mean true depth of the scored points: the paper's Table III "depth range". The relative
+  /// error of a matcher with a given disparity error grows in proportion to it.
+  double mean_true_depth_m = 0.0;
+  /// |f·b / z_est − f·b / z_gt| [px], mean and median (0 without f·b).
+  double disparity_error_px = 0.0, disparity_error_median_px = 0.0;
   double completeness = 0.0;     ///< share of edge pixels with an estimate (±1 px)
   double completeness_horizontal = 0.0;
   double completeness_other = 0.0;
@@ -58,7 +65,8 @@ class DepthErrorAccumulator {
 
  private:
   PinholeCamera camera_;
-  std::vector<double> errors_, relative_;
+  std::vector<double> errors_, relative_, disparity_errors_;
+  double true_depth_sum_ = 0.0;
   double relative_horizontal_sum_ = 0.0;
   std::size_t horizontal_points_ = 0;
   double relative_discontinuity_sum_ = 0.0;

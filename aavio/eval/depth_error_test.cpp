@@ -8,7 +8,7 @@ namespace aavio::eval {
 namespace {
 
 TEST(DepthError, ErrorsAndCompletenessOnAPlane) {
-  const PinholeCamera camera{40, 30, 50.0, 20.0, 15.0};
+  const PinholeCamera camera{40, 30, 50.0, 20.0, 15.0, 5.0};  // f·b = 5 px·m: 0.5 px at 10 m
   cv::Mat depth(30, 40, CV_32FC1, cv::Scalar(10.0f));
   cv::Mat edges(30, 40, CV_8UC1, cv::Scalar(0));
   edges.row(10).setTo(255);  // a near-horizontal edge
@@ -30,6 +30,10 @@ TEST(DepthError, ErrorsAndCompletenessOnAPlane) {
   EXPECT_NEAR(s.relative, 0.01, 1e-9);
   EXPECT_NEAR(s.relative_median, 0.01, 1e-9);
   EXPECT_DOUBLE_EQ(s.outliers, 0.0);
+  EXPECT_NEAR(s.mean_true_depth_m, 10.0, 1e-9);
+  // 5 / 10 − 5 / 10.1 px.
+  EXPECT_NEAR(s.disparity_error_px, 5.0 / 10.0 - 5.0 / 10.1, 1e-9);
+  EXPECT_NEAR(s.disparity_error_median_px, 5.0 / 10.0 - 5.0 / 10.1, 1e-9);
   // Points at x = 1, 4, …, 37 cover x = 0…38 (±1 px): 38 of the row's 39 pixels.
   EXPECT_NEAR(s.completeness_horizontal, 38.0 / 39.0, 1e-12);
   // The column: rows 9–11 are within 1 px of the row's points: 3 of its 30 pixels.
@@ -61,6 +65,28 @@ TEST(DepthError, PointsOnDepthDiscontinuitiesAreScoredApart) {
   EXPECT_NEAR(s.relative_discontinuity, 0.75, 1e-6);
   EXPECT_NEAR(s.relative_continuous, 0.02, 1e-6);
   EXPECT_NEAR(s.relative, (0.75 + 0.04) / 3.0, 1e-6);
+}
+
+// The same matching error (0.25 px of disparity) on a near and a far plane: the relative depth
+// error grows with depth, the disparity error does not; without f·b it is not computed.
+TEST(DepthError, DisparityErrorDoesNotGrowWithDepth) {
+  const double fb = 20.0;
+  auto score = [&](double z_gt, double fb_px_m) {
+    const PinholeCamera camera{40, 30, 50.0, 20.0, 15.0, fb_px_m};
+    cv::Mat depth(30, 40, CV_32FC1, cv::Scalar(static_cast<float>(z_gt)));
+    const double z = fb / (fb / z_gt - 0.25);  // 0.25 px less disparity: farther
+    DepthErrorAccumulator acc(camera);
+    acc.Add({Eigen::Vector3d(0.0, 0.0, z)}, depth, cv::Mat(), geometry::RigidTransform());
+    return acc.Summary();
+  };
+  const DepthErrorSummary near = score(4.0, fb), far = score(16.0, fb);
+  EXPECT_NEAR(near.disparity_error_px, 0.25, 1e-5);
+  EXPECT_NEAR(far.disparity_error_px, 0.25, 1e-5);
+  EXPECT_NEAR(near.mean_true_depth_m, 4.0, 1e-6);
+  EXPECT_NEAR(far.mean_true_depth_m, 16.0, 1e-6);
+  EXPECT_NEAR(near.relative, 0.25 / (fb / 4.0 - 0.25), 1e-6);  // 5.3 %
+  EXPECT_NEAR(far.relative, 0.25 / (fb / 16.0 - 0.25), 1e-6);  // 25 %
+  EXPECT_DOUBLE_EQ(score(4.0, 0.0).disparity_error_px, 0.0);
 }
 
 }  // namespace

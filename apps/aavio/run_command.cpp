@@ -166,7 +166,7 @@ Status Run(RunOptions options, Context& ctx) {
   }
   const mapping::RectifiedStereo stereo = mapping::RectifiedStereo::FromRig(rig);
   eval::DepthErrorAccumulator depth_all(
-      {stereo.width, stereo.height, stereo.f, stereo.cx_left, stereo.cy});
+      {stereo.width, stereo.height, stereo.f, stereo.cx_left, stereo.cy, stereo.fb()});
   pipeline::StageTimings timings;
   Status cycle_status = Status::Ok();
   std::int64_t cycles = 0, bootstraps = 0;

@@ -62,7 +62,7 @@ Expected<RunGroundTruth> LoadRunGroundTruth(const std::string& sequence) {
   truth.depth_dir = d.gt_depth;
   const mapping::RectifiedStereo stereo =
       mapping::RectifiedStereo::FromRig(opened->calibration.rig);
-  truth.camera = {stereo.width, stereo.height, stereo.f, stereo.cx_left, stereo.cy};
+  truth.camera = {stereo.width, stereo.height, stereo.f, stereo.cx_left, stereo.cy, stereo.fb()};
   truth.fb = stereo.fb();
   truth.disparity_offset = stereo.cx_left - stereo.cx_right;
   return truth;
@@ -167,6 +167,9 @@ nlohmann::json DepthJson(const eval::DepthErrorSummary& s) {
           {"relative", s.relative},
           {"relative_median", s.relative_median},
           {"outliers_over_10pct", s.outliers},
+          {"mean_true_depth_m", s.mean_true_depth_m},
+          {"disparity_error_px", s.disparity_error_px},
+          {"disparity_error_median_px", s.disparity_error_median_px},
           {"completeness", s.completeness},
           {"completeness_near_horizontal", s.completeness_horizontal},
           {"completeness_other", s.completeness_other},
@@ -210,14 +213,15 @@ std::string TrajectoryEvaluationTable(const TrajectoryEvaluation& e) {
 
 std::string DepthTable(const eval::DepthErrorSummary& s) {
   return StrFormat(
-      "depth (%zu points over %zu maps): mean %.3f m, median %.3f m, relative %.2f %% (median "
-      "%.2f %%, %.1f %% of points > 10 %% off; %.2f %% on the %.1f %% of points at depth "
-      "discontinuities, %.2f %% elsewhere); completeness %.1f %% (near-horizontal edges "
-      "%.1f %%, others %.1f %%)\n",
-      s.points, s.frames, s.mean_m, s.median_m, 100.0 * s.relative, 100.0 * s.relative_median,
-      100.0 * s.outliers, 100.0 * s.relative_discontinuity,
+      "depth (%zu points over %zu maps, true depth %.1f m on average): mean %.3f m, median %.3f m, "
+      "relative %.2f %% (median %.2f %%, %.1f %% of points > 10 %% off; %.2f %% on the %.1f %% of "
+      "points at depth discontinuities, %.2f %% elsewhere); disparity error %.2f px (median "
+      "%.2f px); completeness %.1f %% (near-horizontal edges %.1f %%, others %.1f %%)\n",
+      s.points, s.frames, s.mean_true_depth_m, s.mean_m, s.median_m, 100.0 * s.relative,
+      100.0 * s.relative_median, 100.0 * s.outliers, 100.0 * s.relative_discontinuity,
       s.points > 0 ? 100.0 * s.points_discontinuity / s.points : 0.0, 100.0 * s.relative_continuous,
-      100.0 * s.completeness, 100.0 * s.completeness_horizontal, 100.0 * s.completeness_other);
+      s.disparity_error_px, s.disparity_error_median_px, 100.0 * s.completeness,
+      100.0 * s.completeness_horizontal, 100.0 * s.completeness_other);
 }
 
 }  // namespace aavio::cli
