@@ -61,6 +61,20 @@ const PosedObservation* FindTemporalPartner(std::span<const PosedObservation> hi
   return nullptr;
 }
 
+void MoveOntoNewestEdge(const std::vector<Eigen::Vector2f>& matched_at,
+                        const std::vector<Eigen::Vector2f>& snapped,
+                        std::vector<DepthPoint>* points) {
+  std::size_t j = 0;
+  for (DepthPoint& p : *points) {
+    if (p.kind != StereoKind::kTemporal) continue;
+    while (j < matched_at.size() && (matched_at[j].x() != p.u || matched_at[j].y() != p.v))
+      ++j;
+    if (j == matched_at.size()) return;
+    p.u = snapped[j].x();
+    p.v = snapped[j].y();
+  }
+}
+
 TemporalPartners FindTemporalPartners(std::span<const PosedObservation> history,
                                       const geometry::RigidTransform& T_world_now,
                                       const TemporalStereoConfig& config) {
@@ -68,7 +82,8 @@ TemporalPartners FindTemporalPartners(std::span<const PosedObservation> history,
   partners.main = FindTemporalPartner(history, T_world_now, config.min_translation_m);
   if (partners.main == nullptr || config.cross_check_px <= 0.0) return partners;
   const auto older = history.first(static_cast<std::size_t>(partners.main - history.data()));
-  partners.check = FindTemporalPartner(older, partners.main->T_world_obs, config.min_translation_m);
+  partners.check = FindTemporalPartner(older, partners.main->T_world_obs,
+                                       config.cross_check_spacing * config.min_translation_m);
   return partners;
 }
 
@@ -117,6 +132,10 @@ Status Mapper::Update(const PosedObservation& now, const PosedObservation* partn
   const events::Observation& obs = *now.obs;
   std::vector<events::EdgeSample> samples =
       UsableSamples(obs, stereo_.width, stereo_.height, config_.max_points);
+  // Temporal stereo compares AA maps, so by default it matches each sample where the AA map
+  // has it, before the snap to the time surface's newest edge (temporal_stereo.match_at_aa_pixels).
+  const std::vector<events::EdgeSample> on_aa_map = samples;
+  const bool at_aa_pixels = config_.temporal_stereo.match_at_aa_pixels;
   if (config_.snap_to_edge_px > 0.0)
     SnapToNewestEdge(obs.negative_ts_left, obs.grad_u, obs.grad_v, config_.snap_to_edge_px, &samples);
   report->samples = static_cast<int>(samples.size());
@@ -128,15 +147,20 @@ Status Mapper::Update(const PosedObservation& now, const PosedObservation* partn
   // η split (algorithm.md §4.2): |g_u| / |g_v| < η → near-horizontal edge → temporal stereo.
   const bool temporal = config_.temporal_stereo.enabled;
   report->has_partner = partner != nullptr;
-  std::vector<Eigen::Vector2f> static_group, temporal_group;
+  std::vector<Eigen::Vector2f> static_group, temporal_group, temporal_snapped;
   std::vector<char> static_horizontal;
-  for (const events::EdgeSample& s : samples) {
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    const events::EdgeSample& s = samples[i];
     const int u = static_cast<int>(std::lround(s.u)), v = static_cast<int>(std::lround(s.v));
     double gu = std::abs(obs.grad_u.at<float>(v, u)), gv = std::abs(obs.grad_v.at<float>(v, u));
     if (gu <= 0.01) gu = 0.1;
     if (gv <= 0.01) gv = 0.1;
     const bool horizontal = gu / gv < config_.eta;
-    if (horizontal && temporal && partner != nullptr) temporal_group.emplace_back(s.u, s.v);
+    if (horizontal && temporal && partner != nullptr) {
+      const events::EdgeSample& m = at_aa_pixels ? on_aa_map[i] : s;
+      temporal_group.emplace_back(m.u, m.v);
+      temporal_snapped.emplace_back(s.u, s.v);
+    }
     if (!horizontal || !temporal || config_.temporal_stereo.also_static) {
       static_group.emplace_back(s.u, s.v);
       static_horizontal.push_back(horizontal ? 1 : 0);
@@ -194,6 +218,7 @@ Status Mapper::Update(const PosedObservation& now, const PosedObservation* partn
   RefinementInput refine{left, right, aa_now.empty() ? nullptr : &aa_now,
                          aa_past.empty() ? nullptr : &aa_past, T_past_now};
   std::vector<DepthPoint> refined = RefineDepths(refine, matches, stereo_, config_);
+  MoveOntoNewestEdge(temporal_group, temporal_snapped, &refined);
   report->refinement_ms = MsSince(t);
 
   // Fusion: one batch per kind, then a new map at the current pose.

@@ -31,8 +31,8 @@ const PosedObservation* FindTemporalPartner(std::span<const PosedObservation> hi
                                             double min_translation_m);
 
 /// Temporal stereo's partners: `main` as FindTemporalPartner with min_translation_m; `check`
-/// (only with cross_check_px > 0) the newest older observation at least min_translation_m from
-/// `main`. Either may be null.
+/// (only with cross_check_px > 0) the newest older observation at least cross_check_spacing ×
+/// min_translation_m from `main`. Either may be null.
 struct TemporalPartners {
   const PosedObservation* main = nullptr;
   const PosedObservation* check = nullptr;
@@ -40,6 +40,14 @@ struct TemporalPartners {
 TemporalPartners FindTemporalPartners(std::span<const PosedObservation> history,
                                       const geometry::RigidTransform& T_world_now,
                                       const TemporalStereoConfig& config);
+
+/// Temporal points are matched and refined at their samples' own AA-map pixels, `matched_at`,
+/// and join the map at the same samples snapped onto the newest edge, `snapped` (same order):
+/// each temporal point of `points` (a subset of `matched_at`, in order, among static points
+/// that stay where they are) moves to its sample's snapped position.
+void MoveOntoNewestEdge(const std::vector<Eigen::Vector2f>& matched_at,
+                        const std::vector<Eigen::Vector2f>& snapped,
+                        std::vector<DepthPoint>* points);
 
 struct MappingCycleReport {
   int samples = 0;  ///< edge samples considered (after the cap and the border)

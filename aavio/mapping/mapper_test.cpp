@@ -94,8 +94,38 @@ TEST(Mapper, NearHorizontalSamplesGoToTemporalOrBoth) {
 namespace aavio::mapping {
 namespace {
 
+// Temporal points move from the pixel they were matched at to their sample's snapped position;
+// static points and depths stay.
+TEST(Mapper, TemporalPointsMoveOntoTheirSnappedSamples) {
+  const std::vector<Eigen::Vector2f> matched_at = {{10, 20}, {11, 30}, {12, 40}, {13, 50}};
+  const std::vector<Eigen::Vector2f> snapped = {{10, 21.5f}, {11, 29}, {12.5f, 40}, {13, 51}};
+  auto point = [](float u, float v, StereoKind kind) {
+    DepthPoint p;
+    p.u = u;
+    p.v = v;
+    p.rho = 0.1;
+    p.kind = kind;
+    return p;
+  };
+  // Static points first (one at a temporal sample's pixel), then the temporal points that
+  // survived refinement (the second sample's was culled).
+  std::vector<DepthPoint> points = {
+      point(10, 20, StereoKind::kStatic), point(50, 60, StereoKind::kStatic),
+      point(10, 20, StereoKind::kTemporal), point(12, 40, StereoKind::kTemporal),
+      point(13, 50, StereoKind::kTemporal)};
+  MoveOntoNewestEdge(matched_at, snapped, &points);
+  const std::vector<Eigen::Vector2f> expected = {
+      {10, 20}, {50, 60}, {10, 21.5f}, {12.5f, 40}, {13, 51}};
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    EXPECT_EQ(points[i].u, expected[i].x()) << i;
+    EXPECT_EQ(points[i].v, expected[i].y()) << i;
+    EXPECT_EQ(points[i].rho, 0.1);
+  }
+}
+
 // Observations 0.3 m apart along x (oldest first): the partner is the newest at least
-// min_translation_m from now, the check partner the newest older one at least as far again.
+// min_translation_m from now, the check partner the newest older one at least
+// cross_check_spacing × min_translation_m beyond it.
 TEST(Mapper, FindsTheTemporalPartnerAndTheCrossCheckPartner) {
   std::vector<PosedObservation> history(6);
   for (int i = 0; i < 6; ++i)
@@ -108,10 +138,15 @@ TEST(Mapper, FindsTheTemporalPartnerAndTheCrossCheckPartner) {
   EXPECT_EQ(partners.main, &history[4]);  // 0.6 m back
   EXPECT_EQ(partners.check, nullptr);     // cross-check off
   config.cross_check_px = 1.0;
+  config.cross_check_spacing = 1.0;
   partners = FindTemporalPartners(history, now, config);
   EXPECT_EQ(partners.main, &history[4]);
-  EXPECT_EQ(partners.check, &history[2]);  // 0.6 m beyond the partner
+  EXPECT_EQ(partners.check, &history[2]);  // 0.6 m beyond the partner: baselines 0.6 and 1.2 m
+  config.cross_check_spacing = 0.5;        // the default
+  partners = FindTemporalPartners(history, now, config);
+  EXPECT_EQ(partners.check, &history[3]);  // 0.3 m beyond it: baselines 0.6 and 0.9 m
   config.min_translation_m = 1.0;
+  config.cross_check_spacing = 1.0;
   partners = FindTemporalPartners(history, now, config);
   EXPECT_EQ(partners.main, &history[2]);  // 1.2 m back
   EXPECT_EQ(partners.check, nullptr);     // nothing 1 m beyond it

@@ -45,6 +45,7 @@ Status TemporalStereoConfig::Validate() const {
       .InRange("min_edge_angle_deg", min_edge_angle_deg, 0.0, 90.0)
       .InRange("uniqueness", uniqueness, 0.0, 1.0)
       .NonNegative("cross_check_px", cross_check_px)
+      .Positive("cross_check_spacing", cross_check_spacing)
       .Positive("min_depth_m", min_depth_m)
       .Require(max_depth_m > min_depth_m, "max_depth_m",
                "= " + FieldChecker::Num(max_depth_m) + " must exceed min_depth_m (" +

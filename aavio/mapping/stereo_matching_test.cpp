@@ -220,6 +220,46 @@ TEST(TemporalStereo, CrossCheckKeepsOnlyDepthsASecondViewConfirms) {
   EXPECT_TRUE(checked(7.0).empty());
 }
 
+// Why the check partner is not at twice the first baseline (cross_check_spacing): bare stripes
+// every 13 px, the plane at 10 m, and a depth range of 5.2-5.9 m that holds only a wrong match.
+// The first partner (0.3 m) finds the stripe one period off: 16.08 + 13 px, 5.53 m. A check
+// partner at 0.6 m finds the stripe two periods off (32.16 + 26 px): 5.53 m again, so the check
+// confirms the wrong depth. At 0.45 m no stripe lies in the range (24.12 + 13 or + 26 px vs.
+// 40.9-46.4 px) and every match is rejected.
+TEST(TemporalStereo, CrossCheckAtTwiceTheBaselineConfirmsAPeriodicMismatch) {
+  const StripedPlane scene(/*bare=*/true);
+  MappingConfig config = Config();
+  config.static_stereo.empty_patch_fraction = 1.0;
+  config.inv_depth_min = 1.0 / 5.9;
+  config.inv_depth_max = 1.0 / 5.2;
+  std::vector<Eigen::Vector2f> on_stripes;  // patches centred on a stripe's first row
+  for (int v : {26, 39, 52})
+    for (int u = 40; u < 120; u += 20)
+      on_stripes.emplace_back(u, v);
+  const std::vector<Match> unchecked = MatchTemporal(
+      {scene.aa_now, scene.aa_past, scene.T_past_now}, on_stripes, scene.stereo, config);
+  ASSERT_EQ(unchecked.size(), on_stripes.size());
+  const double alias_m = scene.stereo.f * 0.3 / (scene.shift + 13.0);
+  for (const Match& m : unchecked)
+    EXPECT_NEAR(1.0 / m.rho, alias_m, 0.05);
+  config.temporal_stereo.cross_check_px = 1.0;
+  auto checked = [&](double baseline_m) {
+    geometry::RigidTransform T_check_now;
+    T_check_now.t = {0.0, baseline_m, 0.0};
+    const cv::Mat aa_check =
+        testing::Shifted(scene.aa_now, 0.0, -scene.stereo.f * baseline_m / 10.0);
+    TemporalStereoInput input{scene.aa_now, scene.aa_past, scene.T_past_now};
+    input.aa_check = &aa_check;
+    input.T_check_now = &T_check_now;
+    return MatchTemporal(input, on_stripes, scene.stereo, config);
+  };
+  const std::vector<Match> twice = checked(0.6);
+  EXPECT_EQ(twice.size(), unchecked.size());
+  for (const Match& m : twice)
+    EXPECT_NEAR(1.0 / m.rho, alias_m, 0.05);
+  EXPECT_TRUE(checked(0.45).empty());
+}
+
 TEST(DepthRefinement, RecoversSubPixelDisparityAndItsUncertainty) {
   const RectifiedStereo stereo = testing::SmallStereo();
   const double d = 20.37;

@@ -42,6 +42,8 @@ TEST(OdometryConfig, ValidationNamesTheFieldAndTheRule) {
        "mapping.static_stereo.out_of_view_radius_px = -1 must be in [0, 50]"},
       {"mapping.temporal_stereo.cross_check_px", "-1",
        "mapping.temporal_stereo.cross_check_px = -1 must be"},
+      {"mapping.temporal_stereo.cross_check_spacing", "0",
+       "mapping.temporal_stereo.cross_check_spacing = 0 must be"},
       {"mapping.temporal_stereo.max_depth_m", "0.5",
        "mapping.temporal_stereo.max_depth_m = 0.5 must exceed min_depth_m (0.8)"},
       {"mapping.depth_refinement.student_t_nu", "2", "student_t_nu = 2 must be in (2, 1000)"},
