@@ -141,6 +141,7 @@ void BM_Sampling(benchmark::State& state) {
   events::AaMap map;
   accumulator.Build(w.left, std::min(3 * kTick, w.end_ns), &map);
   events::EdgeSamplingConfig config;  // 2500 points, 8×6
+  config.min_spacing_px = static_cast<int>(state.range(0));  // 0: the paper, 2: the DSEC preset
   std::uint64_t seed = 0;
   std::size_t samples = 0;
   for (auto _ : state) {
@@ -150,7 +151,7 @@ void BM_Sampling(benchmark::State& state) {
   }
   state.counters["samples"] = static_cast<double>(samples);
 }
-BENCHMARK(BM_Sampling)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Sampling)->Arg(0)->Arg(2)->Unit(benchmark::kMillisecond);
 
 void BM_ObservationBothCameras(benchmark::State& state) {
   const Workload& w = GetWorkload();

@@ -4,7 +4,7 @@
 //   sampling_quality --preset rpg --trajectory box2.txt --duration 20 --ticks 20 --points 2000
 // Options: --preset NAME, --trajectory FILE, --calib DIR, --start S, --duration S, --ticks N,
 // --points M, --tolerance PX (edge dilation), --config-grid C R (sampling/AA grid),
-// --window-ms MS (AA window).
+// --window-ms MS (AA window), --min-spacing PX (edge_sampling.min_spacing_px).
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -44,6 +44,8 @@ int main(int argc, char** argv) {
       config.edge_sampling.num_points = std::stoi(next());
     } else if (arg == "--window-ms") {
       config.adaptive_accumulation.window_ms = std::stod(next());
+    } else if (arg == "--min-spacing") {
+      config.edge_sampling.min_spacing_px = std::stoi(next());
     } else if (arg == "--tolerance") {
       truth.tolerance_px = std::stoi(next());
     } else if (arg == "--config-grid") {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 #include <opencv2/imgproc.hpp>
 #include <random>
 
@@ -22,6 +23,51 @@ bool Rectified(const geometry::RectificationMaps& maps, int x, int y, float* u, 
 // below n / 2^64.
 std::size_t Below(std::mt19937_64& rng, std::size_t n) {
   return static_cast<std::size_t>(rng() % n);
+}
+
+// The k samples of one block with min_spacing_px > 0: candidates in descending count (ties in
+// random order), first those with no sample within `spacing` px yet, then the rest.
+void TakeSpaced(const std::vector<std::uint32_t>& candidates, const std::uint8_t* counts, int width,
+                int height, int spacing, int k, std::mt19937_64& rng,
+                std::vector<std::uint8_t>* taken, const std::function<void(std::uint32_t)>& take) {
+  // Counting sort by count, descending (stable), then a shuffle within each count.
+  std::array<int, 257> start{};
+  for (const std::uint32_t pixel : candidates)
+    ++start[static_cast<std::size_t>(256 - counts[pixel])];
+  for (std::size_t c = 1; c < start.size(); ++c)
+    start[c] += start[c - 1];
+  std::vector<std::uint32_t> order(candidates.size());
+  std::array<int, 257> next{};
+  std::copy(start.begin(), start.end() - 1, next.begin() + 1);
+  for (const std::uint32_t pixel : candidates)
+    order[static_cast<std::size_t>(next[static_cast<std::size_t>(256 - counts[pixel])]++)] = pixel;
+  for (std::size_t c = 1; c < start.size(); ++c) {
+    const std::size_t first = static_cast<std::size_t>(c == 1 ? 0 : start[c - 1]);
+    const std::size_t last = static_cast<std::size_t>(start[c]);
+    for (std::size_t i = first; i + 1 < last; ++i)
+      std::swap(order[i], order[i + Below(rng, last - i)]);
+  }
+  auto free_around = [&](std::uint32_t pixel) {
+    const int x = static_cast<int>(pixel % static_cast<std::uint32_t>(width));
+    const int y = static_cast<int>(pixel / static_cast<std::uint32_t>(width));
+    for (int yy = std::max(0, y - spacing); yy <= std::min(height - 1, y + spacing); ++yy) {
+      const std::uint8_t* row = taken->data() + static_cast<std::size_t>(yy) * width;
+      for (int xx = std::max(0, x - spacing); xx <= std::min(width - 1, x + spacing); ++xx) {
+        if (row[xx] != 0) return false;
+      }
+    }
+    return true;
+  };
+  int got = 0;
+  for (const bool spaced : {true, false}) {
+    for (const std::uint32_t pixel : order) {
+      if (got == k) return;
+      if ((*taken)[pixel] != 0 || (spaced && !free_around(pixel))) continue;
+      (*taken)[pixel] = 1;
+      take(pixel);
+      ++got;
+    }
+  }
 }
 
 }  // namespace
@@ -92,6 +138,16 @@ std::vector<EdgeSample> SampleAaMap(const AaMap& map, const geometry::Rectificat
     s.count = counts[pixel];
     samples.push_back(s);
   };
+  if (config.min_spacing_px > 0) {
+    std::vector<std::uint8_t> taken(map.counts.total(), 0);
+    for (std::size_t b = 0; b < candidates.size(); ++b) {
+      if (quota[b] > 0) {
+        TakeSpaced(candidates[b], counts, width, map.counts.rows, config.min_spacing_px, quota[b],
+                   rng, &taken, take);
+      }
+    }
+    return samples;
+  }
   std::vector<std::uint32_t> tied;
   for (std::size_t b = 0; b < candidates.size(); ++b) {
     const int k = quota[b];

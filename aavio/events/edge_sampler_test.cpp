@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdlib>
 #include <numeric>
 #include <set>
 
@@ -97,6 +99,58 @@ TEST(SampleAaMap, DeterministicForASeedAndTiesVaryWithIt) {
   const auto a = key(SampleAaMap(map, maps, Budget(500), 7));
   EXPECT_EQ(a, key(SampleAaMap(map, maps, Budget(500), 7)));
   EXPECT_NE(a, key(SampleAaMap(map, maps, Budget(500), 8)));
+}
+
+// min_spacing_px: no two samples within 2 px while a block has candidates that keep the
+// spacing; a pixel left behind with a higher count than one taken in its block was skipped for
+// a sample next to it. With more budget than spaced candidates the quotas are still met.
+TEST(SampleAaMap, SpacedSamplesKeepTheirDistanceAndStillMeetTheQuotas) {
+  const AaMap map = RandomAaMap(4);
+  const geometry::RectificationMaps maps = testing::IdentityMaps(64, 48);
+  const BlockGrid grid(64, 48, 4, 3);
+  std::vector<int> sizes;
+  for (const AaBlock& block : map.blocks)
+    sizes.push_back(static_cast<int>(block.active.size()));
+  auto near = [](const EdgeSample& a, int x, int y, int r) {
+    return std::abs(a.x - x) <= r && std::abs(a.y - y) <= r;
+  };
+  EdgeSamplingConfig config = Budget(60);
+  config.min_spacing_px = 2;
+  const std::vector<EdgeSample> spaced = SampleAaMap(map, maps, config, 5);
+  ASSERT_EQ(spaced.size(), 60u);
+  std::vector<int> taken(12, 0), lowest_taken(12, 256);
+  for (std::size_t i = 0; i < spaced.size(); ++i) {
+    ++taken[grid.BlockOf(spaced[i].x, spaced[i].y)];
+    lowest_taken[grid.BlockOf(spaced[i].x, spaced[i].y)] =
+        std::min<int>(lowest_taken[grid.BlockOf(spaced[i].x, spaced[i].y)], spaced[i].count);
+    for (std::size_t j = 0; j < i; ++j)
+      EXPECT_FALSE(near(spaced[j], spaced[i].x, spaced[i].y, 2)) << i << " next to " << j;
+  }
+  EXPECT_EQ(taken, BlockQuotas(sizes, config));
+  for (int y = 0; y < 48; ++y) {
+    for (int x = 0; x < 64; ++x) {
+      if (map.counts.at<std::uint8_t>(y, x) <= lowest_taken[grid.BlockOf(x, y)]) continue;
+      EXPECT_TRUE(std::any_of(spaced.begin(), spaced.end(),
+                              [&](const EdgeSample& s) { return near(s, x, y, 2); }))
+          << "(" << x << ", " << y << ") skipped with nothing next to it";
+    }
+  }
+  // 800 of the 64×48 pixels cannot all be 2 px apart: the quotas are filled, each pixel once.
+  config.num_points = 800;
+  const std::vector<EdgeSample> full = SampleAaMap(map, maps, config, 5);
+  EXPECT_EQ(full.size(), 800u);
+  std::set<int> pixels;
+  for (const EdgeSample& s : full)
+    EXPECT_TRUE(pixels.insert(s.y * 64 + s.x).second) << "a pixel sampled twice";
+  std::vector<int> full_taken(12, 0);
+  for (const EdgeSample& s : full)
+    ++full_taken[grid.BlockOf(s.x, s.y)];
+  EXPECT_EQ(full_taken, BlockQuotas(sizes, config));
+  // Deterministic for a seed.
+  const std::vector<EdgeSample> again = SampleAaMap(map, maps, config, 5);
+  ASSERT_EQ(again.size(), full.size());
+  for (std::size_t i = 0; i < full.size(); ++i)
+    EXPECT_TRUE(again[i].x == full[i].x && again[i].y == full[i].y);
 }
 
 TEST(SampleAaMap, SkipsPixelsOutsideTheValidRectifiedArea) {

@@ -37,6 +37,7 @@ Status EdgeSamplingConfig::Validate() const {
       .InRange("proportional_share", proportional_share, 0.0, 1.0)
       .Require(block_cap_fraction > 0.0 && block_cap_fraction <= 1.0, "block_cap_fraction",
                "= " + FieldChecker::Num(block_cap_fraction) + " must be in (0, 1]")
+      .InRange("min_spacing_px", min_spacing_px, 0, 16)
       .Positive("newest_window_ms", newest_window_ms);
   return check.status();
 }

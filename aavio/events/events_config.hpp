@@ -90,6 +90,12 @@ struct EdgeSamplingConfig {
       0.75;  ///< share of M given out in proportion to active pixels [ESVO2]
   double block_cap_fraction =
       0.5;  ///< a block gives at most this share of its active pixels [ESVO2]
+  /// AA mode (aavio; 0 = the paper, the reference codes): no two samples within this many
+  /// pixels (Chebyshev) while a block has candidates that keep the spacing; its quota is then
+  /// filled with the rest in the same order. Highest counts cluster on a few strong edges and
+  /// their trails, where neighbouring samples repeat one patch match; spread out, the same
+  /// budget covers more edges (docs/mapping.md).
+  int min_spacing_px = 0;
   double newest_window_ms = 10.0;  ///< ESVO mode: events of the last window [ESVO]
   bool denoise = false;            ///< ESVO mode: 3×3 median mask on the event image [ESVO rpg]
 
@@ -101,6 +107,7 @@ struct EdgeSamplingConfig {
     v("grid_rows", grid_rows);
     v("proportional_share", proportional_share);
     v("block_cap_fraction", block_cap_fraction);
+    v("min_spacing_px", min_spacing_px);
     v("newest_window_ms", newest_window_ms);
     v("denoise", denoise);
   }

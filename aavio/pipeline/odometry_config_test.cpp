@@ -42,6 +42,8 @@ TEST(OdometryConfig, ValidationNamesTheFieldAndTheRule) {
        "mapping.static_stereo.out_of_view_radius_px = -1 must be in [0, 50]"},
       {"mapping.temporal_stereo.cross_check_px", "-1",
        "mapping.temporal_stereo.cross_check_px = -1 must be"},
+      {"edge_sampling.min_spacing_px", "-1",
+       "edge_sampling.min_spacing_px = -1 must be in [0, 16]"},
       {"mapping.temporal_stereo.cross_check_spacing", "0",
        "mapping.temporal_stereo.cross_check_spacing = 0 must be"},
       {"mapping.temporal_stereo.max_depth_m", "0.5",
