@@ -89,9 +89,10 @@ struct TemporalStereoConfig {
   /// off by 30 % or more on 04a). At 0.5 they are about 1 : 1.5.
   double cross_check_spacing = 0.5;
   /// With snap_to_edge_px > 0 (aavio): match and triangulate each sample at its own pixel of
-  /// the AA map, then move the point onto the snapped position. False matches at the snapped
-  /// pixel: the snap follows the time surface's newest edge, not the AA maps' edges, and on the
-  /// DSEC twins that left temporal depths 1.5-2.3 % too near (median; docs/mapping.md).
+  /// the AA map, then move the point onto the snapped position. Set to false, temporal stereo
+  /// matches at the snapped pixel (before this option existed): the snap follows the time
+  /// surface's newest edge, not the AA maps' edges, and on the DSEC twins that left temporal
+  /// depths 1.5-2.3 % too near (median; docs/mapping.md).
   bool match_at_aa_pixels = true;
   /// Culling of temporal estimates ([ESVO2] residual_vis_threshold_ln, stdVar_vis_threshold_ln):
   /// the AA residual differs from the TS one; ≤ 0 uses depth_refinement's thresholds.
