@@ -48,6 +48,14 @@ bool DepthFusion::full() const {
   return static_cast<double>(points) >= config_.fusion.max_points;
 }
 
+bool DepthFusion::ready_to_publish() const {
+  if (config_.fusion.strategy == FusionStrategy::kConstFrames) return full();
+  std::size_t points = 0;
+  for (const DepthBatch& b : static_)
+    points += b.points.size();
+  return static_cast<double>(points) > 0.5 * config_.fusion.max_points;
+}
+
 void DepthFusion::Clear() {
   static_.clear();
   temporal_.clear();

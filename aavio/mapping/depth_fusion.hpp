@@ -27,7 +27,11 @@ class DepthFusion {
   /// Forgets every batch (re-initialisation).
   void Clear();
 
+  /// Cleaning starts: const_frames, max_frames batches; const_points, max_points points.
   bool full() const;
+  /// A fused map is worth publishing (algorithm.md §4.11): const_frames, the FIFO is full;
+  /// const_points, it holds more than half of max_points.
+  bool ready_to_publish() const;
   std::size_t batches() const { return static_.size() + temporal_.size(); }
   std::size_t stored_points() const;
 

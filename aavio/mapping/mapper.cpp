@@ -4,6 +4,7 @@
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 
+#include "aavio/common/format.hpp"
 #include "aavio/mapping/depth_refinement.hpp"
 #include "aavio/mapping/edge_snapping.hpp"
 #include "aavio/mapping/out_of_view_check.hpp"
@@ -97,8 +98,9 @@ void Mapper::Reset() {
   local_map_.reset();
 }
 
-void Mapper::Publish(const DepthMap& map) {
+void Mapper::Publish(const DepthMap& map, bool confirmed) {
   auto local = std::make_shared<LocalMap>();
+  local->confirmed = confirmed;
   local->t_ns = map.t_ns();
   local->T_world_ref = map.T_world_frame();
   local->points = map.Points();
@@ -109,18 +111,46 @@ void Mapper::Publish(const DepthMap& map) {
 }
 
 Status Mapper::Initialize(const PosedObservation& now) {
-  std::vector<Eigen::Vector2f> positions;
-  for (const events::EdgeSample& s : now.obs->samples)
-    positions.emplace_back(s.u, s.v);
-  Expected<std::vector<DepthPoint>> points =
-      BootstrapWithSgm(now.obs->ts_left, now.obs->ts_right, positions, stereo_, config_);
-  if (!points) return points.status();
+  const events::Observation& obs = *now.obs;
+  std::vector<DepthPoint> points;
+  if (config_.bootstrap.method == BootstrapMethod::kBlockMatching) {
+    std::vector<events::EdgeSample> samples =
+        UsableSamples(obs, stereo_.width, stereo_.height, config_.max_points);
+    if (config_.snap_to_edge_px > 0.0) {
+      SnapToNewestEdge(obs.negative_ts_left, obs.grad_u, obs.grad_v, config_.snap_to_edge_px,
+                       &samples);
+    }
+    std::vector<Eigen::Vector2f> positions;
+    for (const events::EdgeSample& s : samples)
+      positions.emplace_back(s.u, s.v);
+    const bool smooth = config_.static_stereo.smooth_time_surface;
+    const cv::Mat left = ToFloat(obs.ts_left, smooth), right = ToFloat(obs.ts_right, smooth);
+    const std::vector<Match> matches =
+        MatchStatic({left, right, valid_mask_}, positions, stereo_, config_);
+    points = RefineDepths({left, right, nullptr, nullptr, {}}, matches, stereo_, config_);
+    if (static_cast<int>(points.size()) < config_.bootstrap.min_points) {
+      return FailedPrecondition(
+          StrFormat("block-matching bootstrap found %zu points at the %zu edge samples, fewer "
+                    "than mapping.bootstrap.min_points = %d",
+                    points.size(), samples.size(), config_.bootstrap.min_points));
+    }
+    for (DepthPoint& p : points)
+      p.age = config_.fusion.min_age;  // survives the first cleanings, as SGM points
+  } else {
+    std::vector<Eigen::Vector2f> positions;
+    for (const events::EdgeSample& s : obs.samples)
+      positions.emplace_back(s.u, s.v);
+    Expected<std::vector<DepthPoint>> sgm =
+        BootstrapWithSgm(obs.ts_left, obs.ts_right, positions, stereo_, config_);
+    if (!sgm) return sgm.status();
+    points = std::move(*sgm);
+  }
   fusion_.Clear();
-  DepthMap map(stereo_, now.T_world_obs, now.obs->t_ns);
-  for (const DepthPoint& p : *points)
+  DepthMap map(stereo_, now.T_world_obs, obs.t_ns);
+  for (const DepthPoint& p : points)
     map.InsertNaive(p);
-  fusion_.Add(StereoKind::kStatic, {now.obs->t_ns, now.T_world_obs, std::move(*points)});
-  Publish(map);
+  fusion_.Add(StereoKind::kStatic, {obs.t_ns, now.T_world_obs, std::move(points)});
+  Publish(map, /*confirmed=*/true);
   initialized_ = true;
   return Status::Ok();
 }
@@ -232,8 +262,12 @@ Status Mapper::Update(const PosedObservation& now, const PosedObservation* partn
   fusion_.Add(StereoKind::kStatic, std::move(static_batch));
   if (!temporal_batch.points.empty()) fusion_.Add(StereoKind::kTemporal, std::move(temporal_batch));
   const DepthMap map = fusion_.Fuse(now.T_world_obs, obs.t_ns);
-  Publish(map);
   report->map_points = static_cast<int>(map.size());
+  const bool confirmed = fusion_.ready_to_publish();
+  if (confirmed || config_.fusion.publish_while_filling) {
+    Publish(map, confirmed);
+    report->published = true;
+  }
   report->fusion_ms = MsSince(t);
   report->total_ms = MsSince(start);
   return Status::Ok();

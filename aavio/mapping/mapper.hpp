@@ -56,6 +56,8 @@ struct MappingCycleReport {
   int static_points = 0, temporal_points = 0;  ///< after refinement and culling
   int map_points = 0;
   bool has_partner = false;
+  bool published =
+      false;  ///< the fused map replaced the published one (LocalMap::confirmed says how)
   double matching_ms = 0.0, refinement_ms = 0.0, fusion_ms = 0.0, total_ms = 0.0;
 };
 
@@ -75,7 +77,7 @@ class Mapper {
   LocalMapPtr local_map() const { return local_map_; }
 
  private:
-  void Publish(const DepthMap& map);
+  void Publish(const DepthMap& map, bool confirmed);
 
   RectifiedStereo stereo_;
   cv::Mat valid_mask_;

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "aavio/mapping/mapping_test_utils.hpp"
 
@@ -60,6 +61,78 @@ TEST(Mapper, MapsAPlaneFromSgmThenCycles) {
   mapper.Reset();
   EXPECT_FALSE(mapper.initialized());
   EXPECT_EQ(mapper.local_map(), nullptr);
+}
+
+// As the reference codes (algorithm.md §4.11): the bootstrap map is published, then nothing until
+// the FIFO is full (max_frames batches, the bootstrap's included) and cleaned; with
+// fusion.publish_while_filling every cycle publishes, the maps before the FIFO is full marked
+// provisional (not confirmed).
+TEST(Mapper, PublishesTheBootstrapThenOnlyFullFifos) {
+  const RectifiedStereo stereo = testing::SmallStereo();
+  const std::shared_ptr<events::Observation> obs = PlaneObservation();
+  const cv::Mat valid(120, 160, CV_8UC1, cv::Scalar(255));
+  for (const bool while_filling : {false, true}) {
+    SCOPED_TRACE(while_filling ? "publish_while_filling" : "reference");
+    MappingConfig config;
+    config.bootstrap.min_points = 100;
+    config.max_points = 5000;
+    config.fusion.max_frames = 4;
+    config.fusion.publish_while_filling = while_filling;
+    Mapper mapper(stereo, valid, config);
+    ASSERT_TRUE(mapper.Initialize({obs, {}}).ok());
+    LocalMapPtr published = mapper.local_map();
+    ASSERT_NE(published, nullptr);
+    EXPECT_TRUE(published->confirmed);
+    for (int k = 1; k <= 5; ++k) {
+      MappingCycleReport report;
+      auto next = std::make_shared<events::Observation>(*obs);
+      next->t_ns = k * 50 * kNsPerMs;
+      ASSERT_TRUE(mapper.Update({next, {}}, nullptr, &report).ok());
+      const bool full = k >= 3;  // batches: the bootstrap's + k
+      const bool expected = while_filling || full;
+      EXPECT_EQ(report.published, expected) << "cycle " << k;
+      EXPECT_EQ(mapper.local_map() != published, expected) << "cycle " << k;
+      EXPECT_GT(report.map_points, 0);
+      if (expected) {
+        EXPECT_EQ(mapper.local_map()->t_ns, next->t_ns);
+        EXPECT_EQ(mapper.local_map()->confirmed, full) << "cycle " << k;
+      }
+      published = mapper.local_map();
+    }
+  }
+}
+
+// bootstrap.method = block_matching: the cycle's static stereo on the first observation, every
+// point refined and old enough to survive the first cleanings.
+TEST(Mapper, BootstrapsByBlockMatching) {
+  const RectifiedStereo stereo = testing::SmallStereo();
+  const std::shared_ptr<events::Observation> obs = PlaneObservation();
+  const cv::Mat valid(120, 160, CV_8UC1, cv::Scalar(255));
+  MappingConfig config;
+  config.bootstrap.method = BootstrapMethod::kBlockMatching;
+  config.bootstrap.inv_depth_stddev = 0.05;  // what SGM points would carry
+  config.bootstrap.min_points = 100;
+  config.max_points = 5000;
+  config.fusion.min_age = 2;
+  Mapper mapper(stereo, valid, config);
+  ASSERT_TRUE(mapper.Initialize({obs, {}}).ok());
+  const LocalMapPtr map = mapper.local_map();
+  ASSERT_GT(map->points.size(), 500u);
+  const double rho = 16.0 / stereo.fb();
+  for (const DepthPoint& p : map->points) {
+    EXPECT_NEAR(p.rho, rho, 0.01 * rho);
+    EXPECT_EQ(p.age, 2);
+    // Refined: σ from the Jacobian, not SGM's fixed bootstrap.inv_depth_stddev.
+    EXPECT_LT(std::sqrt(p.variance()), 0.1 * config.bootstrap.inv_depth_stddev);
+  }
+
+  config.bootstrap.min_points = 100000;
+  Mapper picky(stereo, valid, config);
+  const Status status = picky.Initialize({obs, {}});
+  EXPECT_EQ(status.code(), StatusCode::kFailedPrecondition);
+  EXPECT_NE(status.message().find("block-matching bootstrap"), std::string::npos);
+  EXPECT_NE(status.message().find("mapping.bootstrap.min_points"), std::string::npos);
+  EXPECT_FALSE(picky.initialized());
 }
 
 // The η split: near-horizontal samples go to temporal stereo only (the paper), or to both

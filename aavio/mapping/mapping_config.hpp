@@ -170,6 +170,11 @@ struct FusionConfig {
   /// Fuse temporal batches before cleaning, so that their points need confirmation too (aavio;
   /// the paper is silent; ESVO2 fuses them after cleaning and never cleans them).
   bool clean_temporal = true;
+  /// Maps are published as the reference codes do (algorithm.md §4.11): the bootstrap map, then
+  /// only maps of a full FIFO, which are cleaned. True (aavio) also gives tracking the maps fused
+  /// while the FIFO fills (every unconfirmed estimate, spread over its cells) as provisional
+  /// maps; depth outputs and evaluation never take those (LocalMap::confirmed).
+  bool publish_while_filling = false;
 
   template <typename V>
   void VisitFields(V&& v) {
@@ -180,6 +185,7 @@ struct FusionConfig {
     v("min_age", min_age);
     v("compatibility_sigmas", compatibility_sigmas);
     v("clean_temporal", clean_temporal);
+    v("publish_while_filling", publish_while_filling);
   }
   Status Validate() const;
 };
@@ -201,7 +207,12 @@ struct RegularizationConfig {
   Status Validate() const;
 };
 
-/// SGM bootstrap of the first map (algorithm.md §4.12).
+enum class BootstrapMethod {
+  kSgm,            ///< OpenCV StereoSGBM on the time-surface pair (the reference codes)
+  kBlockMatching,  ///< the mapping cycle's static stereo (aavio)
+};
+
+/// The bootstrap of the first map (algorithm.md §4.12).
 struct BootstrapConfig {
   int min_points = 500;  ///< accept the initial map with at least this many points ([ESVO], [ICRA])
   int block_size = 11;   ///< StereoSGBM block; P1 = 8·b², P2 = 32·b²
@@ -213,10 +224,15 @@ struct BootstrapConfig {
   /// relative error 04c 8.9 → 7.0 %, 04e 14.2 → 10.2 %), but the odometry re-initialised on 2 of
   /// 10 seeds of the 04e twin with it (0 of 10 without), so it is off in the presets.
   double max_relative_stddev = 0.0;
+  /// sgm: the reference codes. block_matching (aavio): the cycle's own static stereo on every
+  /// edge sample (ZNCC block matching with its checks, refinement and culling); the SGM settings
+  /// above are then unused.
+  BootstrapMethod method = BootstrapMethod::kSgm;
 
   template <typename V>
   void VisitFields(V&& v) {
     v("min_points", min_points);
+    v("method", method);
     v("block_size", block_size);
     v("uniqueness_ratio", uniqueness_ratio);
     v("inv_depth_stddev", inv_depth_stddev);
@@ -270,5 +286,11 @@ struct EnumNames<mapping::FusionStrategy> {
   static constexpr std::array kNames = {
       std::pair{mapping::FusionStrategy::kConstFrames, "const_frames"},
       std::pair{mapping::FusionStrategy::kConstPoints, "const_points"}};
+};
+template <>
+struct EnumNames<mapping::BootstrapMethod> {
+  static constexpr std::array kNames = {
+      std::pair{mapping::BootstrapMethod::kSgm, "sgm"},
+      std::pair{mapping::BootstrapMethod::kBlockMatching, "block_matching"}};
 };
 }  // namespace aavio

@@ -54,16 +54,17 @@ Status MappingFrontEnd::Tick(TimeNs t_ns) {
     MappingCycle cycle;
     cycle.t_ns = t_ns;
     cycle.representation = obs->timings;
+    bool ran = true;
     if (!mapper_.initialized()) {
       const Status init = mapper_.Initialize(now);
-      cycle.bootstrap = init.ok();
+      ran = cycle.bootstrap = init.ok();  // too few points: the next cycle tries again
     } else {
       const mapping::TemporalPartners partners =
           mapping::FindTemporalPartners(history_, *pose, config_.mapping.temporal_stereo);
       AAVIO_RETURN_IF_ERROR(mapper_.Update(now, partners.main, &cycle.report, partners.check));
     }
-    cycle.map = mapper_.local_map();
-    if (cycle.map && on_cycle) on_cycle(cycle);
+    if (cycle.bootstrap || cycle.report.published) cycle.map = mapper_.local_map();
+    if (ran && on_cycle) on_cycle(cycle);
   }
 
   // Keep a cycle's AA map and pose for later temporal partners.

@@ -21,7 +21,7 @@ struct MappingCycle {
   bool bootstrap = false;  ///< the SGM map of (re-)initialisation
   mapping::MappingCycleReport report;
   events::RepresentationTimings representation;  ///< of this cycle's tick
-  mapping::LocalMapPtr map;
+  mapping::LocalMapPtr map;  ///< the map this cycle published, if any (see LocalMap::confirmed)
 };
 
 class MappingFrontEnd {

@@ -49,7 +49,7 @@ Status Odometry::CollectCycle(OdometryTick* tick, bool wait) {
   tick->mapped = true;
   tick->mapping = result.report;
   tick->map = result.map;
-  PublishToTracking(result.map);
+  if (result.map) PublishToTracking(result.map);  // none while the FIFO fills
   return Status::Ok();
 }
 
@@ -142,8 +142,10 @@ Status Odometry::Tick(TimeNs t_ns) {
       if (!on_thread) {
         AAVIO_RETURN_IF_ERROR(mapper_.Update(now, partners.main, &tick.mapping, partners.check));
         tick.mapped = true;
-        tick.map = mapper_.local_map();
-        PublishToTracking(tick.map);
+        if (tick.mapping.published) {
+          tick.map = mapper_.local_map();
+          PublishToTracking(tick.map);
+        }
       } else if (pending_cycle_.valid()) {
         tick.mapping_skipped = true;  // the last cycle still runs: this one is dropped
       } else {
@@ -156,7 +158,7 @@ Status Odometry::Tick(TimeNs t_ns) {
           CycleResult r;
           r.status = mapper_.Update(now, partner_copy ? &*partner_copy : nullptr, &r.report,
                                     check_copy ? &*check_copy : nullptr);
-          r.map = mapper_.local_map();
+          if (r.report.published) r.map = mapper_.local_map();
           return r;
         });
       }

@@ -174,7 +174,7 @@ Expected<OdometryRunResult> RunOdometry(const OdometryRunRequest& request, Conte
       timings.Add("mapping_total", r.total_ms, r.samples);
       mapping_ms = r.total_ms;
     }
-    if (t.map) {
+    if (t.map && t.map->confirmed) {  // provisional maps are for tracking only
       cloud.Add(*t.map, cloud_depth_m);
       if (cycles % depth_every == 0 && write_status.ok()) {
         const std::string index = StrFormat("%06d", cycles / depth_every);

@@ -169,7 +169,7 @@ Status Run(RunOptions options, Context& ctx) {
       {stereo.width, stereo.height, stereo.f, stereo.cx_left, stereo.cy, stereo.fb()});
   pipeline::StageTimings timings;
   Status cycle_status = Status::Ok();
-  std::int64_t cycles = 0, bootstraps = 0;
+  std::int64_t cycles = 0, bootstraps = 0, depth_maps = 0;
   std::size_t map_points_sum = 0;
   std::map<std::string, double> counts;  // summed over mapping cycles
 
@@ -184,7 +184,10 @@ Status Run(RunOptions options, Context& ctx) {
   front_end.on_cycle = [&](const pipeline::MappingCycle& cycle) {
     ++cycles;
     bootstraps += cycle.bootstrap ? 1 : 0;
-    map_points_sum += cycle.map->points.size();
+    if (cycle.map && cycle.map->confirmed) {
+      ++depth_maps;
+      map_points_sum += cycle.map->points.size();
+    }
     if (!cycle.bootstrap) {
       const mapping::MappingCycleReport& r = cycle.report;
       timings.Add("matching", r.matching_ms, r.static_candidates + r.temporal_candidates);
@@ -201,7 +204,7 @@ Status Run(RunOptions options, Context& ctx) {
         counts[name] += value;
       }
     }
-    if (gt_depth.empty() || !cycle_status.ok()) return;
+    if (!cycle.map || !cycle.map->confirmed || gt_depth.empty() || !cycle_status.ok()) return;
     // The ground-truth depth frame nearest in time (within 25 ms), seen from its own pose.
     auto it = std::lower_bound(gt_depth.begin(), gt_depth.end(), cycle.t_ns,
                                [](const io::GtDepthEntry& e, TimeNs t) { return e.t_ns < t; });
@@ -258,7 +261,9 @@ Status Run(RunOptions options, Context& ctx) {
   summary["events"] = events;
   summary["mapping_cycles"] = cycles;
   summary["bootstraps"] = bootstraps;
-  summary["mean_map_points"] = cycles > 0 ? static_cast<double>(map_points_sum) / cycles : 0.0;
+  summary["depth_maps"] = depth_maps;
+  summary["mean_map_points"] =
+      depth_maps > 0 ? static_cast<double>(map_points_sum) / depth_maps : 0.0;
   for (const auto& [name, total] : counts)
     summary["mapping_per_cycle"][name] = cycles > 0 ? total / static_cast<double>(cycles) : 0.0;
   for (const auto& [stage, s] : timings.Summary()) {
