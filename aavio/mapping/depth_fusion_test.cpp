@@ -204,6 +204,40 @@ TEST(DepthFusion, FifoPoliciesAndPropagation) {
   EXPECT_LE(by_points.stored_points(), 15u);  // ≤ 1.5 × max_points
 }
 
+// When a fused map goes to tracking (algorithm.md §4.11) and when it is cleaned: const_frames
+// both at max_frames batches; const_points publishes beyond half of max_points and cleans from
+// max_points on.
+TEST(DepthFusion, PublishesAndCleansWhenTheFifoFills) {
+  const RectifiedStereo stereo = testing::SmallStereo();
+  MappingConfig config;
+  config.fusion.max_frames = 3;
+  DepthFusion by_frames(stereo, config);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_FALSE(by_frames.ready_to_publish());
+    EXPECT_FALSE(by_frames.full());
+    by_frames.Add(StereoKind::kStatic, {k, {}, {Point(50.0f, 60.0f, 0.1, 0.01)}});
+  }
+  EXPECT_TRUE(by_frames.ready_to_publish());
+  EXPECT_TRUE(by_frames.full());
+
+  config.fusion.strategy = FusionStrategy::kConstPoints;
+  config.fusion.max_points = 10;
+  DepthFusion by_points(stereo, config);
+  auto add = [&](int n) {
+    by_points.Add(StereoKind::kStatic,
+                  {0, {}, std::vector<DepthPoint>(n, Point(50.0f, 60.0f, 0.1, 0.01))});
+  };
+  add(5);  // 5 points: half, not more
+  EXPECT_FALSE(by_points.ready_to_publish());
+  by_points.Add(StereoKind::kTemporal, {0, {}, std::vector<DepthPoint>(9, Point(5, 6, 0.1, 0.01))});
+  EXPECT_FALSE(by_points.ready_to_publish());  // temporal points do not count
+  add(1);
+  EXPECT_TRUE(by_points.ready_to_publish());
+  EXPECT_FALSE(by_points.full());
+  add(4);
+  EXPECT_TRUE(by_points.full());
+}
+
 // Edge samples on a 3-px grid inside the small stereo pair's overlap.
 std::vector<Eigen::Vector2f> SampleGrid() {
   std::vector<Eigen::Vector2f> points;

@@ -263,9 +263,10 @@ Status Mapper::Update(const PosedObservation& now, const PosedObservation* partn
   if (!temporal_batch.points.empty()) fusion_.Add(StereoKind::kTemporal, std::move(temporal_batch));
   const DepthMap map = fusion_.Fuse(now.T_world_obs, obs.t_ns);
   report->map_points = static_cast<int>(map.size());
-  const bool confirmed = fusion_.ready_to_publish();
-  if (confirmed || config_.fusion.publish_while_filling) {
-    Publish(map, confirmed);
+  // Depth outputs take cleaned maps only; tracking gets what the reference codes publish, or
+  // every map with publish_while_filling.
+  if (fusion_.ready_to_publish() || config_.fusion.publish_while_filling) {
+    Publish(map, /*confirmed=*/fusion_.full());
     report->published = true;
   }
   report->fusion_ms = MsSince(t);

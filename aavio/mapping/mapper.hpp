@@ -56,8 +56,8 @@ struct MappingCycleReport {
   int static_points = 0, temporal_points = 0;  ///< after refinement and culling
   int map_points = 0;
   bool has_partner = false;
-  bool published =
-      false;  ///< the fused map replaced the published one (LocalMap::confirmed says how)
+  /// The fused map replaced the published one (LocalMap::confirmed: also a depth output).
+  bool published = false;
   double matching_ms = 0.0, refinement_ms = 0.0, fusion_ms = 0.0, total_ms = 0.0;
 };
 

@@ -171,9 +171,10 @@ struct FusionConfig {
   /// the paper is silent; ESVO2 fuses them after cleaning and never cleans them).
   bool clean_temporal = true;
   /// Maps are published as the reference codes do (algorithm.md §4.11): the bootstrap map, then
-  /// only maps of a full FIFO, which are cleaned. True (aavio) also gives tracking the maps fused
-  /// while the FIFO fills (every unconfirmed estimate, spread over its cells) as provisional
-  /// maps; depth outputs and evaluation never take those (LocalMap::confirmed).
+  /// (const_frames) only maps of a full FIFO, which are cleaned, or (const_points) maps of a FIFO
+  /// more than half full. True (aavio) also gives tracking the maps fused while the FIFO fills
+  /// (every unconfirmed estimate, spread over its cells). Depth outputs and evaluation take only
+  /// cleaned maps either way (LocalMap::confirmed).
   bool publish_while_filling = false;
 
   template <typename V>

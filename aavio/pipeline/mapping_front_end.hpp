@@ -18,7 +18,7 @@ namespace aavio::pipeline {
 
 struct MappingCycle {
   TimeNs t_ns = 0;
-  bool bootstrap = false;  ///< the SGM map of (re-)initialisation
+  bool bootstrap = false;  ///< the bootstrap map of (re-)initialisation
   mapping::MappingCycleReport report;
   events::RepresentationTimings representation;  ///< of this cycle's tick
   mapping::LocalMapPtr map;  ///< the map this cycle published, if any (see LocalMap::confirmed)
