@@ -64,12 +64,15 @@ void DepthFusion::Clear() {
 DepthMap DepthFusion::Fuse(const geometry::RigidTransform& T_world_frame, TimeNs t_ns) const {
   DepthMap map(stereo_, T_world_frame, t_ns);
   const geometry::RigidTransform T_frame_world = T_world_frame.Inverse();
+  int batch_id = 0;
   auto fuse_fifo = [&](const std::deque<DepthBatch>& fifo) {
-    for (auto batch = fifo.rbegin(); batch != fifo.rend(); ++batch) {
+    for (auto batch = fifo.rbegin(); batch != fifo.rend(); ++batch, ++batch_id) {
       const geometry::RigidTransform T_f_o = T_frame_world * batch->T_world_obs;
       DepthPoint moved;
       for (const DepthPoint& p : batch->points) {
-        if (Propagate(p, T_f_o, stereo_, &moved)) map.Fuse(moved, config_.fusion);
+        if (!Propagate(p, T_f_o, stereo_, &moved)) continue;
+        moved.batch = batch_id;
+        map.Fuse(moved, config_.fusion);
       }
     }
   };

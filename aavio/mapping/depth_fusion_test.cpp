@@ -82,6 +82,33 @@ TEST(DepthMap, FusionRules) {
   EXPECT_EQ(map.At(12, 22), nullptr);
 }
 
+// confirm_across_batches: two neighbouring samples of one batch share cells but do not confirm
+// each other; an estimate of another batch does.
+TEST(DepthFusion, OnlyOtherBatchesConfirm) {
+  const RectifiedStereo stereo = testing::SmallStereo();
+  MappingConfig config;
+  config.fusion.max_frames = 2;
+  const std::vector<DepthPoint> pair = {Point(50.0f, 60.0f, 0.1, 0.01),
+                                        Point(51.0f, 60.0f, 0.1, 0.01)};
+  auto cells = [&](bool across, bool confirmed_by_next_batch) {
+    config.fusion.confirm_across_batches = across;
+    DepthFusion fusion(stereo, config);
+    fusion.Add(StereoKind::kStatic, {0, {}, pair});
+    const DepthPoint elsewhere = Point(20.0f, 30.0f, 0.1, 0.01);
+    fusion.Add(StereoKind::kStatic,
+               {1, {}, {confirmed_by_next_batch ? Point(50.0f, 60.0f, 0.1, 0.01) : elsewhere}});
+    EXPECT_TRUE(fusion.full());
+    const DepthMap map = fusion.Fuse({}, 2);
+    int around_pair = 0;
+    for (const DepthPoint& p : map.Points())
+      around_pair += p.u >= 49.0f && p.u <= 52.0f && p.v >= 59.0f && p.v <= 61.0f;
+    return around_pair;
+  };
+  EXPECT_EQ(cells(false, false), 6);  // the reference: the 2×3 shared cells count as confirmed
+  EXPECT_EQ(cells(true, false), 0);   // ... which only the same batch's neighbour did
+  EXPECT_EQ(cells(true, true), 9);    // the 3×3 cells of the later batch's estimate at (50, 60)
+}
+
 // Regularisation as algorithm.md §4.10 states it, by a plain scan of every cell of the window:
 // the reference the map's own (bitset-indexed, parallel) pass must reproduce exactly.
 std::vector<DepthPoint> RegularizeByScan(const DepthMap& map, const RegularizationConfig& config,

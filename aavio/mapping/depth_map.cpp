@@ -18,6 +18,7 @@ DepthPoint FuseStudentT(const DepthPoint& a, const DepthPoint& b) {
   f.s2 = (nu + d * d / sum) / (nu + 1.0) * (a.s2 * b.s2 / sum);
   f.nu = nu + 1.0;
   f.age = std::max(a.age, b.age) + 1;
+  f.batch = b.batch;
   f.residual = std::min(a.residual, b.residual);
   f.near_horizontal = a.near_horizontal || b.near_horizontal;
   return f;
@@ -88,7 +89,11 @@ void DepthMap::FuseCell(int x, int y, const DepthPoint& point, const FusionConfi
     return;
   }
   if (Compatible(*cell, point, config.compatibility_sigmas)) {
-    const DepthPoint fused = FuseStudentT(*cell, point);
+    DepthPoint fused = FuseStudentT(*cell, point);
+    // A neighbouring estimate of the same batch, splatted into a shared cell, is no independent
+    // confirmation (confirm_across_batches).
+    if (config.confirm_across_batches && point.batch >= 0 && cell->batch == point.batch)
+      fused.age = std::max(cell->age, point.age);
     Place(x, y, fused);
     return;
   }

@@ -14,6 +14,7 @@ struct DepthPoint {
   double nu = 3.0;           ///< Student-t degrees of freedom (> 2)
   double residual = 0.0;     ///< cost of its refinement (robustified, Σ w r²)
   int age = 0;               ///< fusions it has been through
+  int batch = -1;            ///< fusion FIFO batch that last contributed to it (-1: none)
   StereoKind kind = StereoKind::kStatic;
   bool near_horizontal = false;
 

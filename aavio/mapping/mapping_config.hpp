@@ -176,6 +176,10 @@ struct FusionConfig {
   /// (every unconfirmed estimate, spread over its cells). Depth outputs and evaluation take only
   /// cleaned maps either way (LocalMap::confirmed).
   bool publish_while_filling = false;
+  /// A point's age counts only fusions with estimates of other batches (another observation,
+  /// or the other kind of stereo): a neighbouring sample of its own batch, spread into a shared
+  /// cell, is no confirmation (aavio; the reference codes count every fusion).
+  bool confirm_across_batches = false;
 
   template <typename V>
   void VisitFields(V&& v) {
@@ -187,6 +191,7 @@ struct FusionConfig {
     v("compatibility_sigmas", compatibility_sigmas);
     v("clean_temporal", clean_temporal);
     v("publish_while_filling", publish_while_filling);
+    v("confirm_across_batches", confirm_across_batches);
   }
   Status Validate() const;
 };
