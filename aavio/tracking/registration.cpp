@@ -135,10 +135,13 @@ RegistrationResult Registration::Solve(
   auto deviation = [&](const Eigen::Matrix3d& R) {
     return geometry::LogSO3(R * R_ref_cur_prior->transpose());
   };
-  auto prior_cost = [&](const Eigen::Matrix3d& R) {
-    return use_prior
-               ? config_.gyro_rotation_weight * kDegPerRad * kDegPerRad * deviation(R).squaredNorm()
-               : 0.0;
+  const double kt = config_.translation_prior_weight * 1e4;  // per cm² → per m²
+  const Eigen::Vector3d t_prior = T_ref_cur_init.t;
+  auto prior_cost = [&](const geometry::RigidTransform& T) {
+    return (use_prior ? config_.gyro_rotation_weight * kDegPerRad * kDegPerRad *
+                            deviation(T.R).squaredNorm()
+                      : 0.0) +
+           kt * (T.t - t_prior).squaredNorm();
   };
   double lambda = 1e-4;
   // One LM step on the points `idx` (damping adapted across steps, as the reference): true if a
@@ -146,13 +149,17 @@ RegistrationResult Registration::Solve(
   auto lm_step = [&](const std::vector<int>& idx, bool* small, Eigen::Matrix<double, 6, 1>* step) {
     const double count = static_cast<double>(idx.size());
     Linearize(images, result.T_ref_cur, idx, &r, &J, &valid);
-    const double cost = r.squaredNorm() / count + prior_cost(result.T_ref_cur.R);
+    const double cost = r.squaredNorm() / count + prior_cost(result.T_ref_cur);
     Eigen::Matrix<double, 6, 6> H = J.transpose() * J;
     Eigen::Matrix<double, 6, 1> g = J.transpose() * r;
     if (use_prior) {
       const double k = config_.gyro_rotation_weight * count * kDegPerRad * kDegPerRad;
       H.topLeftCorner<3, 3>() += 4.0 * k * Eigen::Matrix3d::Identity();
       g.head<3>() += 2.0 * k * deviation(result.T_ref_cur.R);
+    }
+    if (kt > 0.0) {
+      H.bottomRightCorner<3, 3>() += kt * count * Eigen::Matrix3d::Identity();
+      g.tail<3>() += kt * count * (result.T_ref_cur.t - t_prior);
     }
     for (int attempt = 0; attempt < 6; ++attempt) {
       Eigen::Matrix<double, 6, 6> A = H;
@@ -166,7 +173,7 @@ RegistrationResult Registration::Solve(
       const geometry::RigidTransform trial = ApplyIncrement(result.T_ref_cur, theta);
       int trial_valid = 0;
       Linearize(images, trial, idx, &r_trial, nullptr, &trial_valid);
-      const double trial_cost = r_trial.squaredNorm() / count + prior_cost(trial.R);
+      const double trial_cost = r_trial.squaredNorm() / count + prior_cost(trial);
       if (trial_cost < cost) {
         result.T_ref_cur = trial;
         lambda = std::max(1e-7, lambda * 0.1);

@@ -48,7 +48,8 @@ class Registration {
                const TrackingConfig& config, std::uint64_t seed);
 
   /// LM from T_ref_cur_init. With `R_ref_cur_prior` and config.gyro_rotation_weight > 0 the cost
-  /// also holds weight·‖log(R R_priorᵀ)‖² [deg²] (the gyroscope's rotation as a soft prior).
+  /// also holds weight·‖log(R R_priorᵀ)‖² [deg²] (the gyroscope's rotation as a soft prior); with
+  /// config.translation_prior_weight > 0, weight·‖t − t_init‖² [cm²] (the predicted translation).
   RegistrationResult Solve(const RegistrationImages& images,
                            const geometry::RigidTransform& T_ref_cur_init,
                            const std::optional<Eigen::Matrix3d>& R_ref_cur_prior = {}) const;

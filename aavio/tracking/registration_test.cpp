@@ -153,5 +153,30 @@ TEST(Registration, RotationPriorPullsTowardsTheGyroscope) {
   }
 }
 
+// The predicted translation as a soft prior: weight 0 leaves the data alone, heavier weights
+// hold the translation closer and closer to the prediction (a wrong sign of the prior's gradient
+// would push it away or leave LM stuck), a very heavy one at it.
+TEST(Registration, TranslationPriorHoldsThePrediction) {
+  const PosedEdgeScene scene;
+  const RegistrationImages input = scene.Input();
+  geometry::RigidTransform start = scene.truth;
+  start.t += Eigen::Vector3d(0.02, -0.01, 0.0);
+  TrackingConfig config;
+  config.max_iterations = 20;
+  config.polish_iterations = 3;
+  double previous_from_start = 1.0;
+  for (const double weight : {0.0, 1.0, 10.0, 1e6}) {
+    config.translation_prior_weight = weight;
+    const Registration reg(scene.map, kCamera, config, 3);
+    const RegistrationResult result = reg.Solve(input, start);
+    const double from_truth = (result.T_ref_cur.t - scene.truth.t).norm();
+    const double from_start = (result.T_ref_cur.t - start.t).norm();
+    if (weight == 0.0) EXPECT_LT(from_truth, 0.003);
+    EXPECT_LT(from_start, previous_from_start - 0.002) << "weight " << weight;
+    previous_from_start = from_start;
+  }
+  EXPECT_LT(previous_from_start, 0.001);
+}
+
 }  // namespace
 }  // namespace aavio::tracking

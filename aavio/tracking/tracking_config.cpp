@@ -18,7 +18,8 @@ Status TrackingConfig::Validate() const {
       .Positive("max_correction_m", max_correction_m)
       .InRange("velocity_gain", velocity_gain, 0.0, 1.0)
       .InRange("lost_velocity_decay", lost_velocity_decay, 0.0, 1.0)
-      .InRange("gyro_rotation_weight", gyro_rotation_weight, 0.0, 1e9);
+      .InRange("gyro_rotation_weight", gyro_rotation_weight, 0.0, 1e9)
+      .InRange("translation_prior_weight", translation_prior_weight, 0.0, 1e9);
   return check.status();
 }
 

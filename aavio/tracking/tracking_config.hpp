@@ -34,6 +34,11 @@ struct TrackingConfig {
   /// mean squared robust residual [TS levels² per deg²] (typically 10²–40² per point). 0 = the
   /// paper: the prediction is only the initial value (algorithm.md §5.2).
   double gyro_rotation_weight = 0.0;
+  /// aavio: the predicted translation (constant velocity) as a soft prior: the registration also
+  /// pays weight·‖Δt‖² for its translation Δt [cm] from the prediction, in the same units
+  /// [TS levels² per cm²]. Holds weakly observed directions (motion along the optical axis, a
+  /// flat cost valley) where mini-batch noise would slide the pose; 0 = the paper.
+  double translation_prior_weight = 0.0;
 
   template <typename V>
   void VisitFields(V&& v) {
@@ -50,6 +55,7 @@ struct TrackingConfig {
     v("velocity_gain", velocity_gain);
     v("lost_velocity_decay", lost_velocity_decay);
     v("gyro_rotation_weight", gyro_rotation_weight);
+    v("translation_prior_weight", translation_prior_weight);
   }
   Status Validate() const;
 };
