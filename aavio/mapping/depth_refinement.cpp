@@ -217,7 +217,9 @@ bool RefineOne(const RefinementInput& in, const Match& m, const RectifiedStereo&
   const double residual =
       temporal && t.residual_threshold > 0.0 ? t.residual_threshold : c.residual_threshold;
   if (std::sqrt(variance) > max_stddev) return false;
-  if (c.max_relative_stddev > 0.0 && std::sqrt(variance) > c.max_relative_stddev * rho) return false;
+  const double max_relative =
+      temporal && t.max_relative_stddev > 0.0 ? t.max_relative_stddev : c.max_relative_stddev;
+  if (max_relative > 0.0 && std::sqrt(variance) > max_relative * rho) return false;
   if (e_ptr->cost > residual * residual * area) return false;
   if (rho < config.inv_depth_min || rho > config.inv_depth_max) return false;
   out->u = m.u;

@@ -98,6 +98,8 @@ struct TemporalStereoConfig {
   /// the AA residual differs from the TS one; ≤ 0 uses depth_refinement's thresholds.
   double residual_threshold = 0.0;
   double max_inv_depth_stddev = 0.0;
+  /// σ_ρ / ρ culling of temporal estimates (aavio; ≤ 0 uses depth_refinement.max_relative_stddev).
+  double max_relative_stddev = 0.0;
   double min_depth_m = 0.8;  ///< triangulated depth gate ([ICRA] 0.8–40 m hard-coded)
   double max_depth_m = 40.0;
   int history_length = 20;  ///< mapping observations kept for the partner search (1 s at 20 Hz)
@@ -120,6 +122,7 @@ struct TemporalStereoConfig {
     v("match_at_aa_pixels", match_at_aa_pixels);
     v("residual_threshold", residual_threshold);
     v("max_inv_depth_stddev", max_inv_depth_stddev);
+    v("max_relative_stddev", max_relative_stddev);
     v("min_depth_m", min_depth_m);
     v("max_depth_m", max_depth_m);
     v("history_length", history_length);

@@ -288,6 +288,28 @@ TEST(DepthRefinement, RecoversSubPixelDisparityAndItsUncertainty) {
   EXPECT_DOUBLE_EQ(kept[0].rho, matches[0].rho);
 }
 
+// temporal_stereo.max_relative_stddev culls temporal estimates by σ_ρ / ρ in place of
+// depth_refinement.max_relative_stddev (≤ 0: the latter).
+TEST(DepthRefinement, TemporalEstimatesHaveTheirOwnRelativeStddevCulling) {
+  const StripedPlane scene;
+  const std::vector<Match> matches = scene.Matches(Config());
+  ASSERT_GT(matches.size(), scene.points.size() / 2);
+  const cv::Mat none(120, 160, CV_32FC1, cv::Scalar(0.0f));
+  auto refined = [&](double refinement, double temporal) {
+    MappingConfig config = Config();
+    config.depth_refinement.max_relative_stddev = refinement;
+    config.temporal_stereo.max_relative_stddev = temporal;
+    return RefineDepths({none, none, &scene.aa_now, &scene.aa_past, scene.T_past_now}, matches,
+                        scene.stereo, config)
+        .size();
+  };
+  const std::size_t all = refined(0.0, 0.0);
+  ASSERT_GT(all, matches.size() / 2);
+  EXPECT_EQ(refined(1e-6, 0.0), 0u);   // the refinement's threshold applies to both kinds
+  EXPECT_EQ(refined(1e-6, 1.0), all);  // ... unless temporal estimates have their own
+  EXPECT_EQ(refined(0.0, 1e-6), 0u);
+}
+
 TEST(DepthRefinement, StudentTScaleIgnoresZerosAndShrinksForSmallResiduals) {
   const std::vector<float> small = {1, -1, 2, -2, 0, 0, 1};
   const std::vector<float> large = {40, -30, 50, -60, 0, 35};
