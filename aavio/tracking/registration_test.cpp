@@ -171,7 +171,9 @@ TEST(Registration, TranslationPriorHoldsThePrediction) {
     const RegistrationResult result = reg.Solve(input, start);
     const double from_truth = (result.T_ref_cur.t - scene.truth.t).norm();
     const double from_start = (result.T_ref_cur.t - start.t).norm();
-    if (weight == 0.0) EXPECT_LT(from_truth, 0.003);
+    if (weight == 0.0) {
+      EXPECT_LT(from_truth, 0.003);
+    }
     EXPECT_LT(from_start, previous_from_start - 0.002) << "weight " << weight;
     previous_from_start = from_start;
   }
