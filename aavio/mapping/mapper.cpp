@@ -76,6 +76,20 @@ void MoveOntoNewestEdge(const std::vector<Eigen::Vector2f>& matched_at,
   }
 }
 
+void MoveMatchesOntoNewestEdge(const std::vector<Eigen::Vector2f>& matched_at,
+                               const std::vector<Eigen::Vector2f>& snapped,
+                               std::vector<Match>* matches) {
+  std::size_t j = 0;
+  for (Match& m : *matches) {
+    if (m.kind != StereoKind::kTemporal) continue;
+    while (j < matched_at.size() && (matched_at[j].x() != m.u || matched_at[j].y() != m.v))
+      ++j;
+    if (j == matched_at.size()) return;
+    m.u = snapped[j].x();
+    m.v = snapped[j].y();
+  }
+}
+
 TemporalPartners FindTemporalPartners(std::span<const PosedObservation> history,
                                       const geometry::RigidTransform& T_world_now,
                                       const TemporalStereoConfig& config) {
@@ -247,8 +261,18 @@ Status Mapper::Update(const PosedObservation& now, const PosedObservation* partn
   t = Clock::now();
   RefinementInput refine{left, right, aa_now.empty() ? nullptr : &aa_now,
                          aa_past.empty() ? nullptr : &aa_past, T_past_now};
+  cv::Mat ts_past;
+  const bool on_ts = config_.temporal_stereo.refine_on_time_surfaces && !temporal_group.empty();
+  if (on_ts) {
+    // Temporal depths refined where the point is published: at the snapped pixel, on the time
+    // surfaces' newest edges of now and of the partner.
+    ts_past = ToFloat(partner->obs->ts_left, smooth);
+    refine.aa_now = &left;
+    refine.aa_past = &ts_past;
+    MoveMatchesOntoNewestEdge(temporal_group, temporal_snapped, &matches);
+  }
   std::vector<DepthPoint> refined = RefineDepths(refine, matches, stereo_, config_);
-  MoveOntoNewestEdge(temporal_group, temporal_snapped, &refined);
+  if (!on_ts) MoveOntoNewestEdge(temporal_group, temporal_snapped, &refined);
   report->refinement_ms = MsSince(t);
 
   // Fusion: one batch per kind, then a new map at the current pose.

@@ -48,6 +48,10 @@ TemporalPartners FindTemporalPartners(std::span<const PosedObservation> history,
 void MoveOntoNewestEdge(const std::vector<Eigen::Vector2f>& matched_at,
                         const std::vector<Eigen::Vector2f>& snapped,
                         std::vector<DepthPoint>* points);
+/// The same move for temporal matches, before refinement (temporal_stereo.refine_on_time_surfaces).
+void MoveMatchesOntoNewestEdge(const std::vector<Eigen::Vector2f>& matched_at,
+                               const std::vector<Eigen::Vector2f>& snapped,
+                               std::vector<Match>* matches);
 
 struct MappingCycleReport {
   int samples = 0;  ///< edge samples considered (after the cap and the border)

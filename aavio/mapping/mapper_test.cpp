@@ -161,6 +161,44 @@ TEST(Mapper, NearHorizontalSamplesGoToTemporalOrBoth) {
   EXPECT_GT(both.static_points, split.static_points);
 }
 
+// temporal_stereo.refine_on_time_surfaces: the partner is 0.5 m above, and its AA map agrees with
+// a plane at 20.1 m while its time surface has the plane at 19 m (as if the newest edges had
+// moved on). Temporal depths follow the AA maps by default and the time surfaces with the option.
+TEST(Mapper, TemporalDepthsRefineOnTheTimeSurfacesWhenAsked) {
+  const RectifiedStereo stereo = testing::SmallStereo();
+  const std::shared_ptr<events::Observation> obs = PlaneObservation();
+  const double z_aa = stereo.fb() / 16.0, z_ts = 19.0, baseline_m = 0.5;
+  auto past = std::make_shared<events::Observation>();
+  testing::WaveTexture(160, 120, 7, 0.0, -stereo.f * baseline_m / z_aa)
+      .convertTo(past->aa_map, CV_8U);
+  testing::WaveTexture(160, 120, 7, 0.0, -stereo.f * baseline_m / z_ts)
+      .convertTo(past->ts_left, CV_8U);
+  geometry::RigidTransform T_world_past;
+  T_world_past.t = {0.0, -baseline_m, 0.0};
+  const PosedObservation partner{past, T_world_past};
+  const cv::Mat valid(120, 160, CV_8UC1, cv::Scalar(255));
+  for (const bool on_ts : {false, true}) {
+    SCOPED_TRACE(on_ts ? "on the time surfaces" : "on the AA maps");
+    MappingConfig config;
+    config.max_points = 5000;
+    config.eta = 1e9;  // every sample to temporal stereo
+    config.fusion.publish_while_filling = true;
+    config.temporal_stereo.refine_on_time_surfaces = on_ts;
+    Mapper mapper(stereo, valid, config);
+    MappingCycleReport report;
+    ASSERT_TRUE(mapper.Update({obs, {}}, &partner, &report).ok());
+    EXPECT_EQ(report.static_candidates, 0);
+    ASSERT_GT(report.temporal_points, 300);
+    std::vector<double> depths;
+    for (const DepthPoint& p : mapper.local_map()->points) {
+      EXPECT_EQ(p.kind, StereoKind::kTemporal);
+      depths.push_back(1.0 / p.rho);
+    }
+    std::nth_element(depths.begin(), depths.begin() + depths.size() / 2, depths.end());
+    const double expected = on_ts ? z_ts : z_aa;
+    EXPECT_NEAR(depths[depths.size() / 2], expected, 0.005 * expected);
+  }
+}
 }  // namespace
 }  // namespace aavio::mapping
 

@@ -94,6 +94,11 @@ struct TemporalStereoConfig {
   /// surface's newest edge, not the AA maps' edges, and on the DSEC twins that left temporal
   /// depths 1.5-2.3 % too near (median; docs/mapping.md).
   bool match_at_aa_pixels = true;
+  /// Refine each temporal depth where the point joins the map, at its snapped pixel, on the left
+  /// time surfaces of now and of the partner (their newest edges), starting from the depth
+  /// matched on the AA maps (aavio). False (paper): refined on the AA maps at the pixel it was
+  /// matched at, then moved onto the snapped pixel with its depth kept.
+  bool refine_on_time_surfaces = false;
   /// Culling of temporal estimates ([ESVO2] residual_vis_threshold_ln, stdVar_vis_threshold_ln):
   /// the AA residual differs from the TS one; ≤ 0 uses depth_refinement's thresholds.
   double residual_threshold = 0.0;
@@ -120,6 +125,7 @@ struct TemporalStereoConfig {
     v("cross_check_px", cross_check_px);
     v("cross_check_spacing", cross_check_spacing);
     v("match_at_aa_pixels", match_at_aa_pixels);
+    v("refine_on_time_surfaces", refine_on_time_surfaces);
     v("residual_threshold", residual_threshold);
     v("max_inv_depth_stddev", max_inv_depth_stddev);
     v("max_relative_stddev", max_relative_stddev);
