@@ -5,6 +5,7 @@
 #include <random>
 
 #include "aavio/geometry/rotation.hpp"
+#include "aavio/mapping/local_map.hpp"
 #include "aavio/mapping/mapping_test_utils.hpp"
 #include "aavio/mapping/sgm_bootstrap.hpp"
 
@@ -141,6 +142,39 @@ std::vector<DepthPoint> RegularizeByScan(const DepthMap& map, const Regularizati
     }
   }
   return out;
+}
+
+// fusion.track_unconfirmed_temporal false: tracking's copy of a cleaned map leaves out temporal
+// points below min_age (joined after cleaning), keeps every other point, and takes maps still
+// filling whole.
+TEST(LocalMap, TrackingLeavesOutUnconfirmedTemporalPoints) {
+  LocalMap map;
+  const struct {
+    StereoKind kind;
+    int age;
+  } points[] = {{StereoKind::kStatic, 0},
+                {StereoKind::kStatic, 2},
+                {StereoKind::kTemporal, 0},
+                {StereoKind::kTemporal, 1},
+                {StereoKind::kTemporal, 3}};
+  for (const auto& [kind, age] : points) {
+    DepthPoint p;
+    p.kind = kind;
+    p.age = age;
+    map.points.push_back(p);
+    map.points_world.emplace_back(static_cast<double>(map.points.size()), 0.0, 0.0);
+  }
+  FusionConfig fusion;
+  fusion.min_age = 1;
+  EXPECT_EQ(PointsForTracking(map, fusion).size(), 5u);  // the default: every point
+  fusion.track_unconfirmed_temporal = false;
+  const std::vector<Eigen::Vector3d> kept = PointsForTracking(map, fusion);
+  ASSERT_EQ(kept.size(), 4u);
+  EXPECT_EQ(kept[2].x(), 4.0);  // the temporal point of age 0 (x = 3) is out
+  fusion.min_age = 2;
+  EXPECT_EQ(PointsForTracking(map, fusion).size(), 3u);
+  map.confirmed = false;
+  EXPECT_EQ(PointsForTracking(map, fusion).size(), 5u);
 }
 
 TEST(DepthMap, RegularizationMatchesAPlainScanOfTheRule) {

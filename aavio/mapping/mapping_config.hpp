@@ -189,6 +189,10 @@ struct FusionConfig {
   /// or the other kind of stereo): a neighbouring sample of its own batch, spread into a shared
   /// cell, is no confirmation (aavio; the reference codes count every fusion).
   bool confirm_across_batches = false;
+  /// With clean_temporal false, temporal points join a cleaned map unconfirmed. False (aavio)
+  /// keeps those out of tracking's copy of the map (they stay in the depth outputs); true gives
+  /// tracking every point, as ESVO2 does.
+  bool track_unconfirmed_temporal = true;
 
   template <typename V>
   void VisitFields(V&& v) {
@@ -199,6 +203,7 @@ struct FusionConfig {
     v("min_age", min_age);
     v("compatibility_sigmas", compatibility_sigmas);
     v("clean_temporal", clean_temporal);
+    v("track_unconfirmed_temporal", track_unconfirmed_temporal);
     v("publish_while_filling", publish_while_filling);
     v("confirm_across_batches", confirm_across_batches);
   }

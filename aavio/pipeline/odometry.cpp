@@ -76,7 +76,7 @@ void Odometry::PublishToTracking(const mapping::LocalMapPtr& map) {
   }
   auto tracking_map = std::make_shared<tracking::TrackingMap>();
   tracking_map->T_world_ref = map->T_world_ref;
-  tracking_map->points_world = map->points_world;
+  tracking_map->points_world = mapping::PointsForTracking(*map, config_.mapping.fusion);
   tracker_.SetMap(std::move(tracking_map));
 }
 
