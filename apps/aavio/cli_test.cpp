@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -154,6 +155,25 @@ TEST(Cli, ConfigPrintsListsAndWritesTheEffectiveConfig) {
   r = RunAavio({"config", "--list"});
   EXPECT_NE(r.out.find("mapping.fusion.strategy"), std::string::npos);
   EXPECT_NE(r.out.find("one of const_frames|const_points"), std::string::npos);
+}
+
+// Every overlay under configs/overlays loads on top of the DSEC preset and sets what it says.
+TEST(Cli, OverlaysApplyOnTopOfThePreset) {
+  const std::filesystem::path overlays =
+      std::filesystem::path(AAVIO_SOURCE_DIR) / "configs/overlays";
+  int count = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(overlays)) {
+    SCOPED_TRACE(entry.path().string());
+    const Result r = RunAavio({"config", "--preset", "dsec", "--config", entry.path().string()});
+    EXPECT_EQ(r.code, kExitOk) << r.err;
+    ++count;
+  }
+  EXPECT_GE(count, 1);
+  const Result r = RunAavio(
+      {"config", "--preset", "dsec", "--config", (overlays / "more_temporal_depth.yaml").string()});
+  EXPECT_NE(r.out.find("    refine_on_time_surfaces: true\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("    track_unconfirmed_temporal: false\n"), std::string::npos);
+  EXPECT_NE(r.out.find("  eta: 0.2\n"), std::string::npos);  // the preset's, untouched
 }
 
 TEST(Cli, ConfigErrorsAreClear) {
