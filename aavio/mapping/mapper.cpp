@@ -210,6 +210,13 @@ Status Mapper::Update(const PosedObservation& now, const PosedObservation* partn
       static_horizontal.push_back(horizontal ? 1 : 0);
     }
   }
+  if (config_.temporal_stereo.refine_on_time_surfaces && !temporal_group.empty() &&
+      partner->obs->ts_left.size() != obs.ts_left.size()) {
+    return FailedPrecondition(
+        "mapping.temporal_stereo.refine_on_time_surfaces needs the temporal partner's left time "
+        "surface (PosedObservation::obs->ts_left), of the current one's size; keep it in the "
+        "history or turn the option off");
+  }
   report->static_candidates = static_cast<int>(static_group.size());
   report->temporal_candidates = static_cast<int>(temporal_group.size());
 

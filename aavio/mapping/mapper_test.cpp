@@ -198,6 +198,18 @@ TEST(Mapper, TemporalDepthsRefineOnTheTimeSurfacesWhenAsked) {
     const double expected = on_ts ? z_ts : z_aa;
     EXPECT_NEAR(depths[depths.size() / 2], expected, 0.005 * expected);
   }
+  // A partner without its time surface: a clear error, not a crash.
+  MappingConfig config;
+  config.eta = 1e9;
+  config.temporal_stereo.refine_on_time_surfaces = true;
+  Mapper mapper(stereo, valid, config);
+  auto bare = std::make_shared<events::Observation>(*past);
+  bare->ts_left = cv::Mat();
+  const PosedObservation bare_partner{bare, T_world_past};
+  MappingCycleReport report;
+  const Status status = mapper.Update({obs, {}}, &bare_partner, &report);
+  EXPECT_EQ(status.code(), StatusCode::kFailedPrecondition);
+  EXPECT_NE(status.message().find("refine_on_time_surfaces"), std::string::npos);
 }
 }  // namespace
 }  // namespace aavio::mapping
