@@ -212,10 +212,12 @@ bool RefineOne(const RefinementInput& in, const Match& m, const RectifiedStereo&
   const double area = static_cast<double>(c.patch_width) * c.patch_height;
   const TemporalStereoConfig& t = config.temporal_stereo;
   const bool temporal = m.kind == StereoKind::kTemporal;
+  // The AA maps' own thresholds apply to residuals on the AA maps only.
+  const bool on_aa = temporal && !t.refine_on_time_surfaces;
   const double max_stddev =
-      temporal && t.max_inv_depth_stddev > 0.0 ? t.max_inv_depth_stddev : c.max_inv_depth_stddev;
+      on_aa && t.max_inv_depth_stddev > 0.0 ? t.max_inv_depth_stddev : c.max_inv_depth_stddev;
   const double residual =
-      temporal && t.residual_threshold > 0.0 ? t.residual_threshold : c.residual_threshold;
+      on_aa && t.residual_threshold > 0.0 ? t.residual_threshold : c.residual_threshold;
   if (std::sqrt(variance) > max_stddev) return false;
   const double max_relative =
       temporal && t.max_relative_stddev > 0.0 ? t.max_relative_stddev : c.max_relative_stddev;

@@ -62,11 +62,15 @@ const PosedObservation* FindTemporalPartner(std::span<const PosedObservation> hi
   return nullptr;
 }
 
-void MoveOntoNewestEdge(const std::vector<Eigen::Vector2f>& matched_at,
-                        const std::vector<Eigen::Vector2f>& snapped,
-                        std::vector<DepthPoint>* points) {
+namespace {
+
+// Each temporal element of `items` (DepthPoint or Match; a subset of `matched_at`, in order, among
+// static ones) to its sample's snapped position.
+template <typename T>
+void MoveTemporalOntoSnapped(const std::vector<Eigen::Vector2f>& matched_at,
+                             const std::vector<Eigen::Vector2f>& snapped, std::vector<T>* items) {
   std::size_t j = 0;
-  for (DepthPoint& p : *points) {
+  for (T& p : *items) {
     if (p.kind != StereoKind::kTemporal) continue;
     while (j < matched_at.size() && (matched_at[j].x() != p.u || matched_at[j].y() != p.v))
       ++j;
@@ -76,18 +80,18 @@ void MoveOntoNewestEdge(const std::vector<Eigen::Vector2f>& matched_at,
   }
 }
 
+}  // namespace
+
+void MoveOntoNewestEdge(const std::vector<Eigen::Vector2f>& matched_at,
+                        const std::vector<Eigen::Vector2f>& snapped,
+                        std::vector<DepthPoint>* points) {
+  MoveTemporalOntoSnapped(matched_at, snapped, points);
+}
+
 void MoveMatchesOntoNewestEdge(const std::vector<Eigen::Vector2f>& matched_at,
                                const std::vector<Eigen::Vector2f>& snapped,
                                std::vector<Match>* matches) {
-  std::size_t j = 0;
-  for (Match& m : *matches) {
-    if (m.kind != StereoKind::kTemporal) continue;
-    while (j < matched_at.size() && (matched_at[j].x() != m.u || matched_at[j].y() != m.v))
-      ++j;
-    if (j == matched_at.size()) return;
-    m.u = snapped[j].x();
-    m.v = snapped[j].y();
-  }
+  MoveTemporalOntoSnapped(matched_at, snapped, matches);
 }
 
 TemporalPartners FindTemporalPartners(std::span<const PosedObservation> history,

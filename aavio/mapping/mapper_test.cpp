@@ -211,6 +211,7 @@ TEST(Mapper, TemporalDepthsRefineOnTheTimeSurfacesWhenAsked) {
   EXPECT_EQ(status.code(), StatusCode::kFailedPrecondition);
   EXPECT_NE(status.message().find("refine_on_time_surfaces"), std::string::npos);
 }
+
 }  // namespace
 }  // namespace aavio::mapping
 

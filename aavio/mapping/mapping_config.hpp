@@ -100,7 +100,8 @@ struct TemporalStereoConfig {
   /// matched at, then moved onto the snapped pixel with its depth kept.
   bool refine_on_time_surfaces = false;
   /// Culling of temporal estimates ([ESVO2] residual_vis_threshold_ln, stdVar_vis_threshold_ln):
-  /// the AA residual differs from the TS one; ≤ 0 uses depth_refinement's thresholds.
+  /// the AA residual differs from the TS one; ≤ 0 uses depth_refinement's thresholds, as do
+  /// temporal estimates refined on the time surfaces (refine_on_time_surfaces).
   double residual_threshold = 0.0;
   double max_inv_depth_stddev = 0.0;
   /// σ_ρ / ρ culling of temporal estimates (aavio; ≤ 0 uses depth_refinement.max_relative_stddev).

@@ -310,6 +310,29 @@ TEST(DepthRefinement, TemporalEstimatesHaveTheirOwnRelativeStddevCulling) {
   EXPECT_EQ(refined(0.0, 1e-6), 0u);
 }
 
+// temporal_stereo.residual_threshold and max_inv_depth_stddev are the AA residual's: they cull
+// temporal estimates refined on the AA maps, not those refined on the time surfaces (whose
+// residual is the static one's kind).
+TEST(DepthRefinement, AaThresholdsOnlyForEstimatesRefinedOnAaMaps) {
+  const StripedPlane scene;
+  const std::vector<Match> matches = scene.Matches(Config());
+  const cv::Mat none(120, 160, CV_32FC1, cv::Scalar(0.0f));
+  for (const bool tight_stddev : {false, true}) {
+    auto refined = [&](bool on_time_surfaces) {
+      MappingConfig config = Config();
+      (tight_stddev ? config.temporal_stereo.max_inv_depth_stddev
+                    : config.temporal_stereo.residual_threshold) = 1e-9;
+      config.temporal_stereo.refine_on_time_surfaces = on_time_surfaces;
+      // The scene's AA maps stand for the time surfaces too: same residuals, other thresholds.
+      return RefineDepths({none, none, &scene.aa_now, &scene.aa_past, scene.T_past_now}, matches,
+                          scene.stereo, config)
+          .size();
+    };
+    EXPECT_EQ(refined(false), 0u) << tight_stddev;
+    EXPECT_GT(refined(true), matches.size() / 2) << tight_stddev;
+  }
+}
+
 TEST(DepthRefinement, StudentTScaleIgnoresZerosAndShrinksForSmallResiduals) {
   const std::vector<float> small = {1, -1, 2, -2, 0, 0, 1};
   const std::vector<float> large = {40, -30, 50, -60, 0, 35};
