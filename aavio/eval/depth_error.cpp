@@ -59,6 +59,7 @@ void DepthErrorAccumulator::Add(const std::vector<Eigen::Vector3d>& points_world
     }
   }
   if (gt_edges.empty()) return;
+  CountBlocks(covered, gt_edges);
   cv::dilate(covered, covered, cv::getStructuringElement(cv::MORPH_RECT, cv::Size(3, 3)));
   for (int y = 0; y < camera_.height; ++y) {
     for (int x = 0; x < camera_.width; ++x) {
@@ -71,6 +72,18 @@ void DepthErrorAccumulator::Add(const std::vector<Eigen::Vector3d>& points_world
         ++horizontal_edges_;
         horizontal_covered_ += hit ? 1 : 0;
       }
+    }
+  }
+}
+
+void DepthErrorAccumulator::CountBlocks(const cv::Mat& covered, const cv::Mat& gt_edges) {
+  constexpr int b = kCoverageBlockPx;
+  for (int y0 = 0; y0 + b <= camera_.height; y0 += b) {
+    for (int x0 = 0; x0 + b <= camera_.width; x0 += b) {
+      const cv::Rect block(x0, y0, b, b);
+      if (cv::countNonZero(gt_edges(block)) < b) continue;
+      ++blocks_;
+      blocks_covered_ += cv::countNonZero(covered(block)) > 0 ? 1 : 0;
     }
   }
 }
@@ -107,6 +120,7 @@ DepthErrorSummary DepthErrorAccumulator::Summary() const {
   s.completeness = share(edges_covered_, edges_);
   s.completeness_horizontal = share(horizontal_covered_, horizontal_edges_);
   s.completeness_other = share(edges_covered_ - horizontal_covered_, edges_ - horizontal_edges_);
+  s.block_coverage = share(blocks_covered_, blocks_);
   s.points_horizontal = horizontal_points_;
   s.relative_horizontal =
       horizontal_points_ == 0 ? 0.0 : relative_horizontal_sum_ / horizontal_points_;

@@ -43,6 +43,38 @@ TEST(DepthError, ErrorsAndCompletenessOnAPlane) {
   EXPECT_NEAR(s.relative_continuous, 0.01, 1e-9);
 }
 
+// Block coverage: of a 64×48 image's twelve 16-px blocks, those crossed by an edge (at least 16
+// edge pixels) count; a block reached by an estimate anywhere inside it is covered, however few
+// of its edge pixels the estimate is near. Edge pixels too few for a block (a 10-px stub) and
+// estimates in blocks without structure count for nothing; the last, partial column of blocks of
+// a 70-px image is left out.
+TEST(DepthError, BlockCoverageCountsBlocksWithStructureReached) {
+  const PinholeCamera camera{70, 48, 50.0, 35.0, 24.0};
+  cv::Mat depth(48, 70, CV_32FC1, cv::Scalar(10.0f));
+  cv::Mat edges(48, 70, CV_8UC1, cv::Scalar(0));
+  edges.row(8).colRange(0, 64).setTo(255);    // across the top row of blocks (4 blocks)
+  edges.col(40).rowRange(16, 48).setTo(128);  // down blocks (2, 1) and (2, 2)
+  edges.row(40).colRange(0, 10).setTo(128);   // a stub: not enough for block (0, 2)
+  edges.col(66).setTo(128);                   // in the partial column: not a block
+  auto at = [&](int x, int y) {
+    const double z = 10.0;
+    return Eigen::Vector3d((x - 35.0) / 50.0 * z, (y - 24.0) / 50.0 * z, z);
+  };
+  const std::vector<Eigen::Vector3d> points = {
+      at(3, 3),    // block (0, 0), five rows from its edge: reaches the block, not the edge
+      at(20, 8),   // block (1, 0), on the edge
+      at(42, 30),  // block (2, 1)
+      at(5, 40),   // block (0, 2): only the stub, no structure
+      at(66, 20),  // the partial column
+  };
+  DepthErrorAccumulator acc(camera);
+  acc.Add(points, depth, edges, geometry::RigidTransform());
+  const DepthErrorSummary s = acc.Summary();
+  EXPECT_NEAR(s.block_coverage, 3.0 / 6.0, 1e-12);        // blocks (0,0) (1,0) (2,1) of 6
+  acc.Add({}, depth, edges, geometry::RigidTransform());  // an empty map halves it
+  EXPECT_NEAR(acc.Summary().block_coverage, 3.0 / 12.0, 1e-12);
+}
+
 // A box at 5 m (columns 20 and right of it) in front of a wall at 20 m: an estimate at the box's
 // depth one pixel outside its silhouette is scored 75 % off, and apart from the others.
 TEST(DepthError, PointsOnDepthDiscontinuitiesAreScoredApart) {

@@ -173,6 +173,7 @@ nlohmann::json DepthJson(const eval::DepthErrorSummary& s) {
           {"completeness", s.completeness},
           {"completeness_near_horizontal", s.completeness_horizontal},
           {"completeness_other", s.completeness_other},
+          {"block_coverage", s.block_coverage},
           {"points", s.points},
           {"points_near_horizontal", s.points_horizontal},
           {"relative_near_horizontal", s.relative_horizontal},
@@ -216,12 +217,13 @@ std::string DepthTable(const eval::DepthErrorSummary& s) {
       "depth (%zu points over %zu maps, true depth %.1f m on average): mean %.3f m, median %.3f m, "
       "relative %.2f %% (median %.2f %%, %.1f %% of points > 10 %% off; %.2f %% on the %.1f %% of "
       "points at depth discontinuities, %.2f %% elsewhere); disparity error %.2f px (median "
-      "%.2f px); completeness %.1f %% (near-horizontal edges %.1f %%, others %.1f %%)\n",
+      "%.2f px); completeness %.1f %% (near-horizontal edges %.1f %%, others %.1f %%), %.1f %% "
+      "of the blocks with edges reached\n",
       s.points, s.frames, s.mean_true_depth_m, s.mean_m, s.median_m, 100.0 * s.relative,
       100.0 * s.relative_median, 100.0 * s.outliers, 100.0 * s.relative_discontinuity,
       s.points > 0 ? 100.0 * s.points_discontinuity / s.points : 0.0, 100.0 * s.relative_continuous,
       s.disparity_error_px, s.disparity_error_median_px, 100.0 * s.completeness,
-      100.0 * s.completeness_horizontal, 100.0 * s.completeness_other);
+      100.0 * s.completeness_horizontal, 100.0 * s.completeness_other, 100.0 * s.block_coverage);
 }
 
 }  // namespace aavio::cli
