@@ -33,6 +33,8 @@ class DepthFusion {
   /// const_points, it holds more than half of max_points.
   bool ready_to_publish() const;
   std::size_t batches() const { return static_.size() + temporal_.size(); }
+  /// Static batches stored: one per mapping cycle the map holds (and the bootstrap's).
+  std::size_t static_batches() const { return static_.size(); }
   std::size_t stored_points() const;
 
  private:

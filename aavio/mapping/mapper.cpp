@@ -53,6 +53,18 @@ std::vector<events::EdgeSample> UsableSamples(const events::Observation& obs, in
 
 }  // namespace
 
+std::vector<events::EdgeSample> MappingSamples(const events::Observation& obs,
+                                               const RectifiedStereo& stereo,
+                                               const MappingConfig& config) {
+  std::vector<events::EdgeSample> samples =
+      UsableSamples(obs, stereo.width, stereo.height, config.max_points);
+  if (config.snap_to_edge_px > 0.0) {
+    SnapToNewestEdge(obs.negative_ts_left, obs.grad_u, obs.grad_v, config.snap_to_edge_px,
+                     &samples);
+  }
+  return samples;
+}
+
 const PosedObservation* FindTemporalPartner(std::span<const PosedObservation> history,
                                             const geometry::RigidTransform& T_world_now,
                                             double min_translation_m) {
@@ -132,12 +144,7 @@ Status Mapper::Initialize(const PosedObservation& now) {
   const events::Observation& obs = *now.obs;
   std::vector<DepthPoint> points;
   if (config_.bootstrap.method == BootstrapMethod::kBlockMatching) {
-    std::vector<events::EdgeSample> samples =
-        UsableSamples(obs, stereo_.width, stereo_.height, config_.max_points);
-    if (config_.snap_to_edge_px > 0.0) {
-      SnapToNewestEdge(obs.negative_ts_left, obs.grad_u, obs.grad_v, config_.snap_to_edge_px,
-                       &samples);
-    }
+    const std::vector<events::EdgeSample> samples = MappingSamples(obs, stereo_, config_);
     std::vector<Eigen::Vector2f> positions;
     for (const events::EdgeSample& s : samples)
       positions.emplace_back(s.u, s.v);
@@ -298,6 +305,7 @@ Status Mapper::Update(const PosedObservation& now, const PosedObservation* partn
   if (!temporal_batch.points.empty()) fusion_.Add(StereoKind::kTemporal, std::move(temporal_batch));
   const DepthMap map = fusion_.Fuse(now.T_world_obs, obs.t_ns);
   report->map_points = static_cast<int>(map.size());
+  report->fused_cycles = static_cast<int>(fusion_.static_batches());
   // Depth outputs take cleaned maps only; tracking gets what the reference codes publish, or
   // every map with publish_while_filling.
   if (fusion_.ready_to_publish() || config_.fusion.publish_while_filling) {

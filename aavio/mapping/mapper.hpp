@@ -41,6 +41,12 @@ TemporalPartners FindTemporalPartners(std::span<const PosedObservation> history,
                                       const geometry::RigidTransform& T_world_now,
                                       const TemporalStereoConfig& config);
 
+/// The edge samples a mapping cycle uses: the observation's, away from the border, at most
+/// `max_points`, moved onto the newest edge (`snap_to_edge_px`).
+std::vector<events::EdgeSample> MappingSamples(const events::Observation& obs,
+                                               const RectifiedStereo& stereo,
+                                               const MappingConfig& config);
+
 /// Temporal points are matched and refined at their samples' own AA-map pixels, `matched_at`,
 /// and join the map at the same samples snapped onto the newest edge, `snapped` (same order):
 /// each temporal point of `points` (a subset of `matched_at`, in order, among static points
@@ -59,6 +65,8 @@ struct MappingCycleReport {
   int static_matches = 0, temporal_matches = 0;
   int static_points = 0, temporal_points = 0;  ///< after refinement and culling
   int map_points = 0;
+  /// Cycles whose static batch the fused map holds (the FIFO's length, the bootstrap included).
+  int fused_cycles = 0;
   bool has_partner = false;
   /// The fused map replaced the published one (LocalMap::confirmed: also a depth output).
   bool published = false;

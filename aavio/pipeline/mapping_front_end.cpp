@@ -54,6 +54,7 @@ Status MappingFrontEnd::Tick(TimeNs t_ns) {
     MappingCycle cycle;
     cycle.t_ns = t_ns;
     cycle.representation = obs->timings;
+    cycle.observation = obs;
     bool ran = true;
     if (!mapper_.initialized()) {
       const Status init = mapper_.Initialize(now);

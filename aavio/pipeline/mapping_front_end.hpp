@@ -22,6 +22,8 @@ struct MappingCycle {
   mapping::MappingCycleReport report;
   events::RepresentationTimings representation;  ///< of this cycle's tick
   mapping::LocalMapPtr map;  ///< the map this cycle published, if any (see LocalMap::confirmed)
+  /// The cycle's observation (its edge samples: mapping::MappingSamples).
+  std::shared_ptr<const events::Observation> observation;
 };
 
 class MappingFrontEnd {

@@ -239,6 +239,13 @@ TEST(Cli, RunMapsWithGroundTruthPosesAndScoresDepth) {
   EXPECT_GT(j["mapping_cycles"].get<int>(), 10);  // 1.5 s at the preset's 10 Hz
   EXPECT_GT(j["depth"]["points"].get<int>(), 1000);
   EXPECT_LT(j["depth"]["relative_median"].get<double>(), 0.1);  // a real map, not noise
+  // The samples at their true depth cover at least what the map does, and not everything.
+  const nlohmann::json& ceiling = j["depth"]["sample_ceiling"];
+  for (const char* key : {"completeness", "completeness_near_horizontal", "block_coverage"}) {
+    EXPECT_GE(ceiling[key].get<double>(), j["depth"][key].get<double>()) << key;
+    EXPECT_LT(ceiling[key].get<double>(), 1.0) << key;
+  }
+  EXPECT_NE(r.out.find("edge samples at their true depth would cover"), std::string::npos);
   for (const char* stage : {"time_surface", "aa_map", "sampling", "matching", "depth_refinement",
                             "fusion", "mapping_total"}) {
     EXPECT_TRUE(j["stages"].contains(stage)) << stage;

@@ -18,11 +18,13 @@
 
 #include "aavio/common/format.hpp"
 #include "aavio/eval/depth_error.hpp"
+#include "aavio/eval/sample_ceiling.hpp"
 #include "aavio/io/calibration.hpp"
 #include "aavio/io/config_yaml.hpp"
 #include "aavio/io/ground_truth_depth.hpp"
 #include "aavio/io/sequence.hpp"
 #include "aavio/io/trajectory_io.hpp"
+#include "aavio/mapping/mapper.hpp"
 #include "aavio/pipeline/mapping_front_end.hpp"
 #include "aavio/pipeline/stage_timings.hpp"
 #include "cli.hpp"
@@ -167,6 +169,11 @@ Status Run(RunOptions options, Context& ctx) {
   const mapping::RectifiedStereo stereo = mapping::RectifiedStereo::FromRig(rig);
   eval::DepthErrorAccumulator depth_all(
       {stereo.width, stereo.height, stereo.f, stereo.cx_left, stereo.cy, stereo.fb()});
+  // What the map could cover at best: its cycles' samples at their true depth.
+  eval::SampleCeiling ceiling({stereo.width, stereo.height, stereo.f, stereo.cx_left, stereo.cy},
+                              1.0 / config->mapping.inv_depth_max,
+                              1.0 / config->mapping.inv_depth_min,
+                              config->mapping.fusion.radius == 0 ? 2 : 3);
   pipeline::StageTimings timings;
   Status cycle_status = Status::Ok();
   std::int64_t cycles = 0, bootstraps = 0, depth_maps = 0;
@@ -204,7 +211,9 @@ Status Run(RunOptions options, Context& ctx) {
         counts[name] += value;
       }
     }
-    if (!cycle.map || !cycle.map->confirmed || gt_depth.empty() || !cycle_status.ok()) return;
+    // Only cycles whose samples went into the fusion count for the ceiling.
+    const bool fused = cycle.bootstrap || cycle.report.fused_cycles > 0;
+    if (!fused || gt_depth.empty() || !cycle_status.ok()) return;
     // The ground-truth depth frame nearest in time (within 25 ms), seen from its own pose.
     auto it = std::lower_bound(gt_depth.begin(), gt_depth.end(), cycle.t_ns,
                                [](const io::GtDepthEntry& e, TimeNs t) { return e.t_ns < t; });
@@ -223,7 +232,16 @@ Status Run(RunOptions options, Context& ctx) {
       cycle_status = frame.status();
       return;
     }
+    if (cycle.bootstrap) ceiling.Clear();
+    std::vector<Eigen::Vector2f> samples;
+    for (const events::EdgeSample& e :
+         mapping::MappingSamples(*cycle.observation, stereo, config->mapping))
+      samples.emplace_back(e.u, e.v);
+    ceiling.AddCycle(samples, frame->depth_m, *pose);
+    if (!cycle.map || !cycle.map->confirmed) return;
     depth_all.Add(cycle.map->points_world, frame->depth_m, frame->edges, *pose);
+    ceiling.Score(cycle.bootstrap ? 1 : static_cast<std::size_t>(cycle.report.fused_cycles),
+                  frame->depth_m, frame->edges, *pose);
   };
 
   const bool progress = !options.quiet && isatty(STDERR_FILENO);
@@ -274,7 +292,10 @@ Status Run(RunOptions options, Context& ctx) {
                                 {"total_s", s.total_s}};
   }
   const eval::DepthErrorSummary depth = depth_all.Summary();
-  if (!gt_depth.empty()) summary["depth"] = DepthJson(depth);
+  if (!gt_depth.empty()) {
+    summary["depth"] = DepthJson(depth);
+    summary["depth"]["sample_ceiling"] = CoverageJson(ceiling.Summary());
+  }
   AAVIO_RETURN_IF_ERROR(io::WriteTextFile((fs::path(options.out_dir) / "summary.json").string(),
                                           summary.dump(2) + "\n"));
   ctx.out << StrFormat(
@@ -282,7 +303,7 @@ Status Run(RunOptions options, Context& ctx) {
       "map points on average\n",
       data_s, wall_s, wall_s > 0.0 ? data_s / wall_s : 0.0, static_cast<long long>(cycles),
       cycles > 0 ? static_cast<double>(map_points_sum) / cycles : 0.0);
-  if (!gt_depth.empty()) ctx.out << DepthTable(depth);
+  if (!gt_depth.empty()) ctx.out << DepthTable(depth) << SampleCeilingLine(ceiling.Summary());
   ctx.out << "wrote " << options.out_dir << "/{config.yaml,summary.json}\n";
   return Status::Ok();
 }

@@ -161,26 +161,31 @@ nlohmann::json TrajectoryEvaluationJson(const TrajectoryEvaluation& e) {
           {"rpe_step_rot_rmse_deg", a.rpe_rotation_rmse_deg}};
 }
 
-nlohmann::json DepthJson(const eval::DepthErrorSummary& s) {
-  return {{"mean_m", s.mean_m},
-          {"median_m", s.median_m},
-          {"relative", s.relative},
-          {"relative_median", s.relative_median},
-          {"outliers_over_10pct", s.outliers},
-          {"mean_true_depth_m", s.mean_true_depth_m},
-          {"disparity_error_px", s.disparity_error_px},
-          {"disparity_error_median_px", s.disparity_error_median_px},
-          {"completeness", s.completeness},
+nlohmann::json CoverageJson(const eval::DepthErrorSummary& s) {
+  return {{"completeness", s.completeness},
           {"completeness_near_horizontal", s.completeness_horizontal},
           {"completeness_other", s.completeness_other},
-          {"block_coverage", s.block_coverage},
-          {"points", s.points},
-          {"points_near_horizontal", s.points_horizontal},
-          {"relative_near_horizontal", s.relative_horizontal},
-          {"points_on_discontinuities", s.points_discontinuity},
-          {"relative_on_discontinuities", s.relative_discontinuity},
-          {"relative_off_discontinuities", s.relative_continuous},
-          {"frames", s.frames}};
+          {"block_coverage", s.block_coverage}};
+}
+
+nlohmann::json DepthJson(const eval::DepthErrorSummary& s) {
+  nlohmann::json j = CoverageJson(s);
+  j.update(nlohmann::json{{"mean_m", s.mean_m},
+                          {"median_m", s.median_m},
+                          {"relative", s.relative},
+                          {"relative_median", s.relative_median},
+                          {"outliers_over_10pct", s.outliers},
+                          {"mean_true_depth_m", s.mean_true_depth_m},
+                          {"disparity_error_px", s.disparity_error_px},
+                          {"disparity_error_median_px", s.disparity_error_median_px},
+                          {"points", s.points},
+                          {"points_near_horizontal", s.points_horizontal},
+                          {"relative_near_horizontal", s.relative_horizontal},
+                          {"points_on_discontinuities", s.points_discontinuity},
+                          {"relative_on_discontinuities", s.relative_discontinuity},
+                          {"relative_off_discontinuities", s.relative_continuous},
+                          {"frames", s.frames}});
+  return j;
 }
 
 std::string TrajectoryEvaluationTable(const TrajectoryEvaluation& e) {
@@ -224,6 +229,14 @@ std::string DepthTable(const eval::DepthErrorSummary& s) {
       s.points > 0 ? 100.0 * s.points_discontinuity / s.points : 0.0, 100.0 * s.relative_continuous,
       s.disparity_error_px, s.disparity_error_median_px, 100.0 * s.completeness,
       100.0 * s.completeness_horizontal, 100.0 * s.completeness_other, 100.0 * s.block_coverage);
+}
+
+std::string SampleCeilingLine(const eval::DepthErrorSummary& c) {
+  return StrFormat(
+      "edge samples at their true depth would cover %.1f %% (near-horizontal edges %.1f %%, others "
+      "%.1f %%), %.1f %% of the blocks with edges (depth.sample_ceiling)\n",
+      100.0 * c.completeness, 100.0 * c.completeness_horizontal, 100.0 * c.completeness_other,
+      100.0 * c.block_coverage);
 }
 
 }  // namespace aavio::cli

@@ -63,5 +63,10 @@ nlohmann::json DepthJson(const eval::DepthErrorSummary& s);
 /// A readable table of the same.
 std::string TrajectoryEvaluationTable(const TrajectoryEvaluation& e);
 std::string DepthTable(const eval::DepthErrorSummary& s);
+/// The coverage figures of a summary (completeness overall, near-horizontal and other; block
+/// coverage), e.g. of an eval::SampleCeiling.
+nlohmann::json CoverageJson(const eval::DepthErrorSummary& s);
+/// One line: what the edge samples would cover at their true depth (eval::SampleCeiling).
+std::string SampleCeilingLine(const eval::DepthErrorSummary& ceiling);
 
 }  // namespace aavio::cli
