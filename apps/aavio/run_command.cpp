@@ -232,6 +232,8 @@ Status Run(RunOptions options, Context& ctx) {
       cycle_status = frame.status();
       return;
     }
+    // The samples as a mapping cycle takes them (an SGM bootstrap uses all of the observation's;
+    // its one cycle is counted with these). Read on the ground-truth frame nearest the cycle.
     if (cycle.bootstrap) ceiling.Clear();
     std::vector<Eigen::Vector2f> samples;
     for (const events::EdgeSample& e :
