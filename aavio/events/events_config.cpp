@@ -25,7 +25,8 @@ Status AdaptiveAccumulationConfig::Validate() const {
       .Require(check_interval_ms <= window_ms, "check_interval_ms",
                "must not exceed window_ms (" + FieldChecker::Num(window_ms) + ")")
       .Positive("activity_tolerance", activity_tolerance)
-      .InRange("activity_check_events", activity_check_events, 1, 100000);
+      .InRange("activity_check_events", activity_check_events, 1, 100000)
+      .InRange("map_count_gain", map_count_gain, 0, 255);
   return check.status();
 }
 

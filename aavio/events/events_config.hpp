@@ -59,6 +59,11 @@ struct AdaptiveAccumulationConfig {
   double window_ms = 10.0;           ///< events considered per AA map (one tick)
   double activity_tolerance = 0.95;  ///< [ESVO2] stop when |A_rev − A_fin| < tolerance
   int activity_check_events = 10;    ///< [ESVO2] events per block between checks
+  /// The rectified AA map temporal stereo matches: 0 = binary, 255 where at least one event was
+  /// accumulated ([ICRA code]); g > 0 (aavio): min(255, g · count), so that the pixels an edge
+  /// crossed with more events weigh more, and an edge's band reads as a ridge rather than a
+  /// plateau whose width follows the motion.
+  int map_count_gain = 0;
 
   template <typename V>
   void VisitFields(V&& v) {
@@ -71,6 +76,7 @@ struct AdaptiveAccumulationConfig {
     v("window_ms", window_ms);
     v("activity_tolerance", activity_tolerance);
     v("activity_check_events", activity_check_events);
+    v("map_count_gain", map_count_gain);
   }
   Status Validate() const;
 };

@@ -25,7 +25,8 @@ struct Observation {
   cv::Mat negative_ts_left;   ///< tracking's objective image, CV_8UC1
   cv::Mat grad_u, grad_v;     ///< Sobel/8 of negative_ts_left, CV_32FC1
   cv::Mat aa_counts_raw;      ///< AA counts in raw coordinates, CV_8UC1 (saturating)
-  cv::Mat aa_map;             ///< AA binary image (255 where accumulated) rectified, CV_8UC1
+  cv::Mat aa_map;             ///< AA map rectified, CV_8UC1: binary (255 where accumulated) or
+                              ///< min(255, gain · count) (adaptive_accumulation.map_count_gain)
   std::vector<EdgeSample> samples;  ///< mapping's edge pixels (AA or ESVO's newest events)
   std::vector<AaBlock> aa_blocks;   ///< per block: closed, events, span (active lists dropped)
   std::int64_t aa_window_events = 0, aa_used_events = 0;

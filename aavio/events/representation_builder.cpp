@@ -137,7 +137,11 @@ Status RepresentationBuilder::Build(TimeNs t_ns, Observation* out, BuildOptions 
   out->timings.edges = true;
   accumulator_.Build(recent, t_ns, &aa_);
   aa_.counts.copyTo(out->aa_counts_raw);
-  cv::compare(aa_.counts, 0, scratch_binary_, cv::CMP_GT);
+  if (const int gain = config_.adaptive_accumulation.map_count_gain; gain > 0) {
+    aa_.counts.convertTo(scratch_binary_, CV_8U, gain);  // saturates at 255
+  } else {
+    cv::compare(aa_.counts, 0, scratch_binary_, cv::CMP_GT);
+  }
   left_.rectifier.Rectify(scratch_binary_, &out->aa_map);
   out->aa_window_events = aa_.window_events;
   out->aa_used_events = aa_.used_events;

@@ -52,6 +52,40 @@ TEST(RepresentationBuilder, ObservationMatchesItsParts) {
   EXPECT_EQ(obs.negative_ts_left.type(), CV_8UC1);
 }
 
+// With map_count_gain the AA map temporal stereo matches holds gain · count (saturating at 255)
+// instead of 255 wherever an event was accumulated (identity rectification: pixel for pixel).
+TEST(RepresentationBuilder, AaMapScalesCountsWhenAsked) {
+  const Streams s;
+  RepresentationConfig config;
+  config.adaptive_accumulation.grid_cols = config.edge_sampling.grid_cols = 4;
+  config.adaptive_accumulation.grid_rows = config.edge_sampling.grid_rows = 3;
+  auto build = [&](int gain) {
+    config.adaptive_accumulation.map_count_gain = gain;
+    RepresentationBuilder builder(Identity(), kW, kH, config, 0);
+    EXPECT_TRUE(builder.AddEvents(Camera::kLeft, s.left).ok());
+    EXPECT_TRUE(builder.AddEvents(Camera::kRight, s.right).ok());
+    Observation obs;
+    EXPECT_TRUE(builder.Build(60 * kNsPerMs, &obs).ok());
+    return obs;
+  };
+  const Observation binary = build(0), scaled = build(64);
+  ASSERT_TRUE(Same(binary.aa_counts_raw, scaled.aa_counts_raw));
+  int ones = 0, many = 0;
+  for (int y = 0; y < kH; ++y) {
+    for (int x = 0; x < kW; ++x) {
+      const int count = scaled.aa_counts_raw.at<std::uint8_t>(y, x);
+      EXPECT_EQ(binary.aa_map.at<std::uint8_t>(y, x), count > 0 ? 255 : 0);
+      EXPECT_EQ(scaled.aa_map.at<std::uint8_t>(y, x), std::min(255, 64 * count));
+      ones += count == 1 ? 1 : 0;
+      many += count >= 4 ? 1 : 0;
+    }
+  }
+  EXPECT_GT(ones, 100);  // both levels occur, so the comparison means something
+  EXPECT_GT(many, 0);
+  config.adaptive_accumulation.map_count_gain = 300;
+  EXPECT_FALSE(config.adaptive_accumulation.Validate().ok());
+}
+
 TEST(RepresentationBuilder, EventsAfterTheTickWaitForTheNextOne) {
   const Streams s;
   RepresentationConfig config;
