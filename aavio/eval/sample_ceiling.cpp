@@ -1,6 +1,8 @@
 #include "aavio/eval/sample_ceiling.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 namespace aavio::eval {
 
