@@ -269,7 +269,7 @@ Status Mapper::Update(const PosedObservation& now, const PosedObservation* partn
       input.T_check_now = &T_check_now;
     }
     const std::vector<Match> temporal_matches =
-        MatchTemporal(input, temporal_group, stereo_, config_);
+        MatchTemporal(input, temporal_group, stereo_, config_, &report->temporal);
     report->temporal_matches = static_cast<int>(temporal_matches.size());
     matches.insert(matches.end(), temporal_matches.begin(), temporal_matches.end());
   }

@@ -16,6 +16,7 @@
 #include "aavio/mapping/depth_fusion.hpp"
 #include "aavio/mapping/local_map.hpp"
 #include "aavio/mapping/mapping_config.hpp"
+#include "aavio/mapping/temporal_stereo.hpp"
 
 namespace aavio::mapping {
 
@@ -64,6 +65,8 @@ struct MappingCycleReport {
   int static_candidates = 0, temporal_candidates = 0;
   int static_matches = 0, temporal_matches = 0;
   int static_points = 0, temporal_points = 0;  ///< after refinement and culling
+  /// What became of the temporal candidates (matched + the rest = temporal_candidates).
+  TemporalMatchStats temporal;
   int map_points = 0;
   /// Cycles whose static batch the fused map holds (the FIFO's length, the bootstrap included).
   int fused_cycles = 0;

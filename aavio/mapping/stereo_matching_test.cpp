@@ -220,6 +220,65 @@ TEST(TemporalStereo, CrossCheckKeepsOnlyDepthsASecondViewConfirms) {
   EXPECT_TRUE(checked(7.0).empty());
 }
 
+// Every candidate is counted once, under the test that dropped it (summary.json shows these).
+TEST(TemporalStereo, StatsCountWhereEachCandidateIsLost) {
+  const StripedPlane scene;
+  MappingConfig config = Config();
+  auto stats_of = [&](const TemporalStereoInput& input) {
+    TemporalMatchStats stats;
+    const std::vector<Match> matches =
+        MatchTemporal(input, scene.points, scene.stereo, config, &stats);
+    EXPECT_EQ(stats.matched, static_cast<int>(matches.size()));
+    EXPECT_EQ(stats.matched + stats.no_segment + stats.no_match + stats.ill_conditioned +
+                  stats.check_rejected + stats.out_of_range,
+              static_cast<int>(scene.points.size()));
+    return stats;
+  };
+  const TemporalStereoInput plain{scene.aa_now, scene.aa_past, scene.T_past_now};
+  const TemporalMatchStats base = stats_of(plain);
+  ASSERT_GT(base.matched, static_cast<int>(scene.points.size()) / 2);
+  EXPECT_EQ(base.ill_conditioned + base.check_rejected + base.out_of_range, 0);
+
+  // Vertical edges: the vertical segment runs along them, nothing to search.
+  const cv::Mat zero(120, 160, CV_32FC1, cv::Scalar(0.0f));
+  const cv::Mat one(120, 160, CV_32FC1, cv::Scalar(1.0f));
+  config.temporal_stereo.min_edge_angle_deg = 30.0;
+  EXPECT_EQ(stats_of({scene.aa_now, scene.aa_past, scene.T_past_now, &one, &zero}).no_segment,
+            static_cast<int>(scene.points.size()));
+  config = Config();
+
+  // A conditioning gate no parallax can pass: the matches become ill-conditioned.
+  config.temporal_stereo.max_relative_depth_error = 1e-6;
+  const TemporalMatchStats strict = stats_of(plain);
+  EXPECT_EQ(strict.matched, 0);
+  EXPECT_EQ(strict.ill_conditioned, base.matched);
+  config = Config();
+
+  // A check partner that puts the plane at 7 m rejects what the first partner matched.
+  config.temporal_stereo.cross_check_px = 1.0;
+  geometry::RigidTransform T_check_now;
+  T_check_now.t = {0.0, 0.6, 0.0};
+  const cv::Mat aa_check = testing::Shifted(scene.aa_now, 0.0, -scene.stereo.f * 0.6 / 7.0);
+  TemporalStereoInput checked = plain;
+  checked.aa_check = &aa_check;
+  checked.T_check_now = &T_check_now;
+  const TemporalMatchStats rejected = stats_of(checked);
+  EXPECT_EQ(rejected.matched, 0);
+  EXPECT_EQ(rejected.check_rejected, base.matched);
+  config = Config();
+
+  // Bare stripes repeat along the segment: with the uniqueness test no match is left.
+  const StripedPlane bare(/*bare=*/true);
+  config.static_stereo.empty_patch_fraction = 1.0;
+  const TemporalStereoInput bare_input{bare.aa_now, bare.aa_past, bare.T_past_now};
+  const TemporalMatchStats ambiguous = stats_of(bare_input);
+  ASSERT_GT(ambiguous.matched, 0);
+  config.temporal_stereo.uniqueness = 0.1;
+  const TemporalMatchStats unique = stats_of(bare_input);
+  EXPECT_EQ(unique.matched, 0);
+  EXPECT_EQ(unique.no_match, ambiguous.no_match + ambiguous.matched);
+}
+
 // Why the check partner is not at twice the first baseline (cross_check_spacing): bare stripes
 // every 13 px, the plane at 10 m, and a depth range of 5.2-5.9 m that holds only a wrong match.
 // The first partner (0.3 m) finds the stripe one period off: 16.08 + 13 px, 5.53 m. A check

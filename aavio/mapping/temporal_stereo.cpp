@@ -5,6 +5,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <vector>
 
@@ -52,11 +53,20 @@ struct SegmentMatch {
   double dz_per_px = 0.0;
 };
 
-bool SearchSegment(const NormalizedPatch& patch, const cv::Mat& aa_past,
-                   const geometry::RigidTransform& T_past_now, const Eigen::Vector2f& x,
-                   const int u, const int v, const TemporalStereoInput& in,
-                   const RectifiedStereo& stereo, const MappingConfig& config, double rho_lo,
-                   double rho_hi, SegmentMatch* out) {
+enum class Outcome : std::uint8_t {
+  kMatched,
+  kNoSegment,
+  kNoMatch,
+  kIllConditioned,
+  kCheckRejected,
+  kOutOfRange
+};
+
+Outcome SearchSegment(const NormalizedPatch& patch, const cv::Mat& aa_past,
+                      const geometry::RigidTransform& T_past_now, const Eigen::Vector2f& x,
+                      const int u, const int v, const TemporalStereoInput& in,
+                      const RectifiedStereo& stereo, const MappingConfig& config, double rho_lo,
+                      double rho_hi, SegmentMatch* out) {
   const TemporalStereoConfig& t = config.temporal_stereo;
   const int hr = t.patch_rows / 2, hc = t.patch_cols / 2;
   const int w = aa_past.cols, h = aa_past.rows;
@@ -65,19 +75,19 @@ bool SearchSegment(const NormalizedPatch& patch, const cv::Mat& aa_past,
   double u_far, v_far, u_near, v_near;
   if (!stereo.Project(T_past_now * stereo.Backproject(x.x(), x.y(), rho_lo), &u_far, &v_far) ||
       !stereo.Project(T_past_now * stereo.Backproject(x.x(), x.y(), rho_hi), &u_near, &v_near)) {
-    return false;
+    return Outcome::kNoSegment;
   }
   const double du = u_near - u_far, dv = v_near - v_far;
   const double length = std::max(std::abs(du), std::abs(dv));
   // Too little parallax over the whole depth range: depth would be mostly quantisation noise.
-  if (length < t.min_parallax_px) return false;
+  if (length < t.min_parallax_px) return Outcome::kNoSegment;
   // The edge (perpendicular to the TS gradient) must cross the segment: sin of the angle between
   // them = |segment · gradient| / (|segment| |gradient|).
   if (t.min_edge_angle_deg > 0.0 && in.grad_u != nullptr && in.grad_v != nullptr) {
     const double gu = in.grad_u->at<float>(v, u), gv = in.grad_v->at<float>(v, u);
     const double norms = std::hypot(du, dv) * std::hypot(gu, gv);
     if (!(std::abs(du * gu + dv * gv) >= std::sin(t.min_edge_angle_deg * kDegToRad) * norms))
-      return false;
+      return Outcome::kNoSegment;
   }
   // One candidate per pixel along the segment's major axis, at whole pixels of it (so the steps
   // are uniform and the parabola below is unbiased); the other coordinate is rounded.
@@ -99,11 +109,11 @@ bool SearchSegment(const NormalizedPatch& patch, const cv::Mat& aa_past,
     costs[static_cast<std::size_t>(k)] = e;
     if (best_k < 0 || e < costs[static_cast<std::size_t>(best_k)]) best_k = k;
   }
-  if (best_k < 0) return false;
+  if (best_k < 0) return Outcome::kNoSegment;  // the segment lies outside the image
   const double best = costs[static_cast<std::size_t>(best_k)];
-  if (best >= t.threshold_factor * config.static_stereo.zncc_threshold) return false;
+  if (best >= t.threshold_factor * config.static_stereo.zncc_threshold) return Outcome::kNoMatch;
   if (t.uniqueness > 0.0 && HasRivalMinimum(costs.data(), steps + 1, best_k, t.uniqueness))
-    return false;
+    return Outcome::kNoMatch;
   // Sub-sample position along the segment: the vertex of the parabola through the best cost and
   // its neighbours.
   double k_star = best_k;
@@ -117,7 +127,7 @@ bool SearchSegment(const NormalizedPatch& patch, const cv::Mat& aa_past,
   const double s_star = s_of(k_star);
   const Eigen::Vector2d best_x(u_far + s_star * du, v_far + s_star * dv);
   const double z = TriangulateDepth(stereo, {x.x(), x.y()}, best_x, T_past_now);
-  if (z < t.min_depth_m || z > t.max_depth_m) return false;
+  if (z < t.min_depth_m || z > t.max_depth_m) return Outcome::kNoMatch;
   // The depth's change for one pixel of matching error along the segment.
   const double one_px = 1.0 / length;
   const Eigen::Vector2d dir(du, dv);
@@ -127,17 +137,17 @@ bool SearchSegment(const NormalizedPatch& patch, const cv::Mat& aa_past,
   const double dz_per_px = z_a <= 0.0 || z_b <= 0.0 ? std::numeric_limits<double>::infinity()
                                                     : 0.5 * std::abs(z_b - z_a);
   *out = {best, z, dz_per_px};
-  return true;
+  return Outcome::kMatched;
 }
 
-bool MatchOne(const TemporalStereoInput& in, const Eigen::Vector2f& x,
-              const RectifiedStereo& stereo, const MappingConfig& config, double rho_lo,
-              double rho_hi, Match* out) {
+Outcome MatchOne(const TemporalStereoInput& in, const Eigen::Vector2f& x,
+                 const RectifiedStereo& stereo, const MappingConfig& config, double rho_lo,
+                 double rho_hi, Match* out) {
   const TemporalStereoConfig& t = config.temporal_stereo;
   const int hr = t.patch_rows / 2, hc = t.patch_cols / 2;
   const int w = in.aa_now.cols, h = in.aa_now.rows;
   const int u = static_cast<int>(std::lround(x.x())), v = static_cast<int>(std::lround(x.y()));
-  if (u - hc < 0 || u + hc >= w || v - hr < 0 || v + hr >= h) return false;
+  if (u - hc < 0 || u + hc >= w || v - hr < 0 || v + hr >= h) return Outcome::kNoSegment;
   const int stride = static_cast<int>(in.aa_now.step1());
   const float* source = in.aa_now.ptr<float>(v - hr) + (u - hc);
   // A patch with (almost) nothing accumulated carries no structure.
@@ -146,61 +156,86 @@ bool MatchOne(const TemporalStereoInput& in, const Eigen::Vector2f& x,
     for (int c = 0; c < t.patch_cols; ++c)
       empty += source[r * stride + c] < 1.0f ? 1 : 0;
   }
-  if (empty > config.static_stereo.empty_patch_fraction * t.patch_rows * t.patch_cols) return false;
+  if (empty > config.static_stereo.empty_patch_fraction * t.patch_rows * t.patch_cols)
+    return Outcome::kNoSegment;
   NormalizedPatch patch;
-  if (!PreparePatch(source, stride, t.patch_rows, t.patch_cols, &patch)) return false;
+  if (!PreparePatch(source, stride, t.patch_rows, t.patch_cols, &patch)) return Outcome::kNoSegment;
 
   SegmentMatch m;
-  if (!SearchSegment(patch, in.aa_past, in.T_past_now, x, u, v, in, stereo, config, rho_lo, rho_hi,
-                     &m)) {
-    return false;
-  }
+  const Outcome found = SearchSegment(patch, in.aa_past, in.T_past_now, x, u, v, in, stereo, config,
+                                      rho_lo, rho_hi, &m);
+  if (found != Outcome::kMatched) return found;
   // Conditioning: one pixel of matching error may not move the depth by more than
   // max_relative_depth_error (parallax too small for this depth otherwise).
   if (t.max_relative_depth_error > 0.0 && !(m.dz_per_px / m.z <= t.max_relative_depth_error))
-    return false;
+    return Outcome::kIllConditioned;
   double rho = 1.0 / m.z;
   if (in.aa_check != nullptr) {
     // Cross-check (aavio): an independent search in a second, older view must find the same
     // depth within cross_check_px pixels of matching error (summed over both searches); then
     // the two are averaged in inverse depth, weighted by their per-pixel precision.
     SegmentMatch c;
-    if (!SearchSegment(patch, *in.aa_check, *in.T_check_now, x, u, v, in, stereo, config, rho_lo,
-                       rho_hi, &c)) {
-      return false;
+    if (SearchSegment(patch, *in.aa_check, *in.T_check_now, x, u, v, in, stereo, config, rho_lo,
+                      rho_hi, &c) != Outcome::kMatched) {
+      return Outcome::kCheckRejected;
     }
     const double d_rho_m = m.dz_per_px / (m.z * m.z), d_rho_c = c.dz_per_px / (c.z * c.z);
     const double rho_c = 1.0 / c.z;
     // Both precisions finite and non-zero (a zero one would take all the weight).
     if (!(d_rho_m > 0.0 && d_rho_c > 0.0 && std::isfinite(d_rho_m) && std::isfinite(d_rho_c)))
-      return false;
-    if (std::abs(rho - rho_c) > t.cross_check_px * (d_rho_m + d_rho_c)) return false;
+      return Outcome::kCheckRejected;
+    if (std::abs(rho - rho_c) > t.cross_check_px * (d_rho_m + d_rho_c))
+      return Outcome::kCheckRejected;
     const double w_m = 1.0 / (d_rho_m * d_rho_m), w_c = 1.0 / (d_rho_c * d_rho_c);
     rho = (w_m * rho + w_c * rho_c) / (w_m + w_c);
   }
-  if (rho < config.inv_depth_min || rho > config.inv_depth_max) return false;
+  if (rho < config.inv_depth_min || rho > config.inv_depth_max) return Outcome::kOutOfRange;
   *out = {x.x(), x.y(), rho, m.cost, StereoKind::kTemporal, true};
-  return true;
+  return Outcome::kMatched;
 }
 
 }  // namespace
 
 std::vector<Match> MatchTemporal(const TemporalStereoInput& input,
                                  std::span<const Eigen::Vector2f> points,
-                                 const RectifiedStereo& stereo, const MappingConfig& config) {
+                                 const RectifiedStereo& stereo, const MappingConfig& config,
+                                 TemporalMatchStats* stats) {
   double rho_lo, rho_hi;
   TemporalInvDepthRange(config, &rho_lo, &rho_hi);
   std::vector<Match> results(points.size());
-  std::vector<char> ok(points.size(), 0);
+  // An empty depth range (the gate outside the configured range) leaves nothing to search.
+  std::vector<Outcome> outcomes(points.size(), Outcome::kNoSegment);
   if (rho_lo < rho_hi) {
     tbb::parallel_for(std::size_t{0}, points.size(), [&](std::size_t i) {
-      ok[i] = MatchOne(input, points[i], stereo, config, rho_lo, rho_hi, &results[i]) ? 1 : 0;
+      outcomes[i] = MatchOne(input, points[i], stereo, config, rho_lo, rho_hi, &results[i]);
     });
   }
+  TemporalMatchStats counts;
   std::vector<Match> matches;
   for (std::size_t i = 0; i < points.size(); ++i) {
-    if (ok[i]) matches.push_back(results[i]);
+    switch (outcomes[i]) {
+      case Outcome::kMatched:
+        ++counts.matched;
+        matches.push_back(results[i]);
+        break;
+      case Outcome::kNoSegment:
+        ++counts.no_segment;
+        break;
+      case Outcome::kNoMatch:
+        ++counts.no_match;
+        break;
+      case Outcome::kIllConditioned:
+        ++counts.ill_conditioned;
+        break;
+      case Outcome::kCheckRejected:
+        ++counts.check_rejected;
+        break;
+      case Outcome::kOutOfRange:
+        ++counts.out_of_range;
+        break;
+    }
   }
+  if (stats != nullptr) *stats = counts;
   return matches;
 }
 

@@ -30,6 +30,24 @@ struct TemporalStereoInput {
   const geometry::RigidTransform* T_check_now = nullptr;
 };
 
+/// What became of a cycle's temporal candidates, one count each (summary.json
+/// `mapping_per_cycle`): where they are lost says which gate to look at.
+struct TemporalMatchStats {
+  int matched = 0;
+  /// Nothing to search: the patch is (almost) empty or leaves the image, the segment has less
+  /// than `min_parallax_px` of parallax, or the edge runs along it (`min_edge_angle_deg`).
+  int no_segment = 0;
+  /// No candidate under the cost threshold (`threshold_factor`), a rival minimum
+  /// (`uniqueness`), or a triangulated depth outside the gate (`min_depth_m`…`max_depth_m`).
+  int no_match = 0;
+  /// One pixel of matching error would move the depth by more than `max_relative_depth_error`.
+  int ill_conditioned = 0;
+  /// The cross-check partner found no match or another depth (`cross_check_px`).
+  int check_rejected = 0;
+  /// The (averaged) inverse depth fell outside the configured range.
+  int out_of_range = 0;
+};
+
 /// The inverse-depth interval temporal stereo searches: the configured range ∩ the depth gate.
 void TemporalInvDepthRange(const MappingConfig& config, double* rho_lo, double* rho_hi);
 
@@ -38,8 +56,11 @@ void TemporalInvDepthRange(const MappingConfig& config, double* rho_lo, double* 
 double TriangulateDepth(const RectifiedStereo& stereo, const Eigen::Vector2d& x_now,
                         const Eigen::Vector2d& x_past, const geometry::RigidTransform& T_past_now);
 
+/// Matches for the `points` that pass every test, in their order; `stats` (optional) counts
+/// what became of each point.
 std::vector<Match> MatchTemporal(const TemporalStereoInput& input,
                                  std::span<const Eigen::Vector2f> points,
-                                 const RectifiedStereo& stereo, const MappingConfig& config);
+                                 const RectifiedStereo& stereo, const MappingConfig& config,
+                                 TemporalMatchStats* stats = nullptr);
 
 }  // namespace aavio::mapping

@@ -201,13 +201,19 @@ Status Run(RunOptions options, Context& ctx) {
       timings.Add("depth_refinement", r.refinement_ms, r.static_matches + r.temporal_matches);
       timings.Add("fusion", r.fusion_ms, r.map_points);
       timings.Add("mapping_total", r.total_ms, r.samples);
-      for (const auto& [name, value] : {std::pair{"static_candidates", r.static_candidates},
-                                        std::pair{"temporal_candidates", r.temporal_candidates},
-                                        std::pair{"static_matches", r.static_matches},
-                                        std::pair{"temporal_matches", r.temporal_matches},
-                                        std::pair{"static_points", r.static_points},
-                                        std::pair{"temporal_points", r.temporal_points},
-                                        std::pair{"cycles_with_partner", r.has_partner ? 1 : 0}}) {
+      for (const auto& [name, value] :
+           {std::pair{"static_candidates", r.static_candidates},
+            std::pair{"temporal_candidates", r.temporal_candidates},
+            std::pair{"static_matches", r.static_matches},
+            std::pair{"temporal_matches", r.temporal_matches},
+            std::pair{"static_points", r.static_points},
+            std::pair{"temporal_points", r.temporal_points},
+            std::pair{"temporal_no_segment", r.temporal.no_segment},
+            std::pair{"temporal_no_match", r.temporal.no_match},
+            std::pair{"temporal_ill_conditioned", r.temporal.ill_conditioned},
+            std::pair{"temporal_check_rejected", r.temporal.check_rejected},
+            std::pair{"temporal_out_of_range", r.temporal.out_of_range},
+            std::pair{"cycles_with_partner", r.has_partner ? 1 : 0}}) {
         counts[name] += value;
       }
     }
