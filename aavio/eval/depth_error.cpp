@@ -53,6 +53,12 @@ void DepthErrorAccumulator::Add(const std::vector<Eigen::Vector3d>& points_world
       ++horizontal_points_;
       relative_horizontal_sum_ += error / z_gt;
     }
+    for (std::size_t c = 0; c < kDepthCutoffsM.size(); ++c) {
+      if (z_gt > kDepthCutoffsM[c]) continue;
+      ++cutoffs_[c].points;
+      cutoffs_[c].error_sum += error;
+      cutoffs_[c].relative_sum += error / z_gt;
+    }
     if (OnDiscontinuity(gt_depth_m, ui, vi)) {
       ++discontinuity_points_;
       relative_discontinuity_sum_ += error / z_gt;
@@ -71,6 +77,18 @@ void DepthErrorAccumulator::Add(const std::vector<Eigen::Vector3d>& points_world
       if (label == 255) {
         ++horizontal_edges_;
         horizontal_covered_ += hit ? 1 : 0;
+      }
+      const double z_gt = gt_depth_m.at<float>(y, x);
+      if (z_gt <= 0.0) continue;
+      for (std::size_t c = 0; c < kDepthCutoffsM.size(); ++c) {
+        if (z_gt > kDepthCutoffsM[c]) continue;
+        CutoffCounts& k = cutoffs_[c];
+        ++k.edges;
+        k.edges_covered += hit ? 1 : 0;
+        if (label == 255) {
+          ++k.horizontal;
+          k.horizontal_covered += hit ? 1 : 0;
+        }
       }
     }
   }
@@ -130,6 +148,18 @@ DepthErrorSummary DepthErrorAccumulator::Summary() const {
   if (s.points > discontinuity_points_) {
     s.relative_continuous =
         (s.relative * s.points - relative_discontinuity_sum_) / (s.points - discontinuity_points_);
+  }
+  for (std::size_t c = 0; c < kDepthCutoffsM.size(); ++c) {
+    const CutoffCounts& k = cutoffs_[c];
+    DepthCutoffSummary& out = s.cutoffs[c];
+    out.max_depth_m = kDepthCutoffsM[c];
+    out.points = k.points;
+    if (k.points > 0) {
+      out.mean_m = k.error_sum / k.points;
+      out.relative = k.relative_sum / k.points;
+    }
+    out.completeness = share(k.edges_covered, k.edges);
+    out.completeness_horizontal = share(k.horizontal_covered, k.horizontal);
   }
   return s;
 }

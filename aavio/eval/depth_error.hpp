@@ -10,8 +10,12 @@
 /// edge pixels: an edge across the block) and at least one estimate: how much of the scene's
 /// structure the map reaches at all, which pixel completeness, bounded by the number of points,
 /// does not tell (a map of 2.5k well-spread points against one of 10k on the strongest edges).
+/// The same figures up to depth cutoffs (the event-stereo depth benchmarks' 10 / 20 / 30 m, as on
+/// MVSEC and DSEC) say where in depth a map reaches the scene: points and edge pixels whose
+/// ground-truth depth is at most the cutoff.
 
 #include <Eigen/Core>
+#include <array>
 #include <opencv2/core/mat.hpp>
 #include <vector>
 
@@ -35,6 +39,19 @@ inline constexpr double kDiscontinuityRatio = 1.1;
 /// structure.
 inline constexpr int kCoverageBlockPx = 16;
 
+/// Ground-truth depth cutoffs [m] of the per-cutoff figures.
+inline constexpr std::array<double, 3> kDepthCutoffsM = {10.0, 20.0, 30.0};
+
+/// Error and completeness over the points and edge pixels up to one depth cutoff.
+struct DepthCutoffSummary {
+  double max_depth_m = 0.0;
+  std::size_t points = 0;     ///< estimates whose ground-truth depth is within the cutoff
+  double mean_m = 0.0;        ///< mean |Δz| of those
+  double relative = 0.0;      ///< mean |Δz| / z_gt of those
+  double completeness = 0.0;  ///< of the edge pixels within the cutoff
+  double completeness_horizontal = 0.0;  ///< of the near-horizontal ones
+};
+
 struct DepthErrorSummary {
   std::size_t points = 0;  ///< estimates with ground truth
   std::size_t frames = 0;
@@ -56,6 +73,7 @@ struct DepthErrorSummary {
   std::size_t points_discontinuity = 0;  ///< estimates on a GT depth discontinuity
   double relative_discontinuity = 0.0;   ///< mean relative error of those
   double relative_continuous = 0.0;      ///< mean relative error of all the others
+  std::array<DepthCutoffSummary, kDepthCutoffsM.size()> cutoffs{};
 };
 
 class DepthErrorAccumulator {
@@ -87,6 +105,13 @@ class DepthErrorAccumulator {
   std::size_t horizontal_edges_ = 0, horizontal_covered_ = 0;
   std::size_t blocks_ = 0, blocks_covered_ = 0;
   std::size_t frames_ = 0;
+  /// Per depth cutoff: sums over the points and counts of the edge pixels within it.
+  struct CutoffCounts {
+    std::size_t points = 0;
+    double error_sum = 0.0, relative_sum = 0.0;
+    std::size_t edges = 0, edges_covered = 0, horizontal = 0, horizontal_covered = 0;
+  };
+  std::array<CutoffCounts, kDepthCutoffsM.size()> cutoffs_{};
 };
 
 }  // namespace aavio::eval

@@ -121,5 +121,41 @@ TEST(DepthError, DisparityErrorDoesNotGrowWithDepth) {
   EXPECT_DOUBLE_EQ(score(4.0, 0.0).disparity_error_px, 0.0);
 }
 
+// The figures up to a depth cutoff take only the points and the edge pixels whose ground-truth
+// depth is within it: a near-horizontal edge across a plane at 8 m (left half) and one at 25 m
+// (right half), estimates 2 % off covering most of the near half and one 10 % off on the far one.
+TEST(DepthError, CutoffsScoreOnlyWhatLiesWithinThem) {
+  ASSERT_EQ(kDepthCutoffsM.size(), 3u);
+  const PinholeCamera camera{40, 30, 50.0, 20.0, 15.0};
+  cv::Mat depth(30, 40, CV_32FC1, cv::Scalar(8.0f));
+  depth.colRange(20, 40).setTo(25.0f);
+  cv::Mat edges(30, 40, CV_8UC1, cv::Scalar(0));
+  edges.row(10).setTo(255);
+  auto at = [](int x, double z) {
+    return Eigen::Vector3d((x - 20.0) / 50.0 * z, (10 - 15.0) / 50.0 * z, z);
+  };
+  std::vector<Eigen::Vector3d> points;
+  for (int x = 1; x <= 16; x += 3)
+    points.push_back(at(x, 8.0 * 1.02));  // cover x = 0…17: 18 of the near half's 20 pixels
+  points.push_back(at(31, 25.0 * 1.1));   // covers x = 30…32 of the far half
+  DepthErrorAccumulator acc(camera);
+  acc.Add(points, depth, edges, geometry::RigidTransform());
+  const DepthErrorSummary s = acc.Summary();
+  EXPECT_NEAR(s.completeness_horizontal, 21.0 / 40.0, 1e-12);
+  for (std::size_t c : {0u, 1u}) {  // 10 and 20 m: the near plane only
+    const DepthCutoffSummary& k = s.cutoffs[c];
+    EXPECT_DOUBLE_EQ(k.max_depth_m, kDepthCutoffsM[c]);
+    EXPECT_EQ(k.points, 6u);
+    EXPECT_NEAR(k.relative, 0.02, 1e-9);
+    EXPECT_NEAR(k.mean_m, 0.16, 1e-9);
+    EXPECT_NEAR(k.completeness, 18.0 / 20.0, 1e-12);
+    EXPECT_NEAR(k.completeness_horizontal, 18.0 / 20.0, 1e-12);
+  }
+  const DepthCutoffSummary& all = s.cutoffs[2];  // 30 m: both planes
+  EXPECT_EQ(all.points, 7u);
+  EXPECT_NEAR(all.relative, (6 * 0.02 + 0.1) / 7.0, 1e-9);
+  EXPECT_NEAR(all.completeness_horizontal, 21.0 / 40.0, 1e-12);
+}
+
 }  // namespace
 }  // namespace aavio::eval

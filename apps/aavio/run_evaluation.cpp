@@ -17,6 +17,22 @@ nlohmann::json StatsJson(const eval::ErrorStatistics& s) {
           {"min", s.min},   {"max", s.max},   {"samples", s.samples}};
 }
 
+// "up to 10 / 20 / 30 m: …" — where in depth the map reaches the scene.
+std::string DepthCutoffLine(const eval::DepthErrorSummary& s) {
+  std::string cut, rel, comp, horizontal;
+  for (const eval::DepthCutoffSummary& c : s.cutoffs) {
+    const char* sep = cut.empty() ? "" : " / ";
+    cut += StrFormat("%s%.0f", sep, c.max_depth_m);
+    rel += StrFormat("%s%.2f", sep, 100.0 * c.relative);
+    comp += StrFormat("%s%.1f", sep, 100.0 * c.completeness);
+    horizontal += StrFormat("%s%.1f", sep, 100.0 * c.completeness_horizontal);
+  }
+  return StrFormat(
+      "  up to %s m of true depth: relative %s %%, completeness %s %% (near-horizontal "
+      "edges %s %%)\n",
+      cut.c_str(), rel.c_str(), comp.c_str(), horizontal.c_str());
+}
+
 }  // namespace
 
 Expected<TrajectoryEvaluation> EvaluateTrajectories(
@@ -185,6 +201,16 @@ nlohmann::json DepthJson(const eval::DepthErrorSummary& s) {
                           {"relative_on_discontinuities", s.relative_discontinuity},
                           {"relative_off_discontinuities", s.relative_continuous},
                           {"frames", s.frames}});
+  nlohmann::json cutoffs = nlohmann::json::array();
+  for (const eval::DepthCutoffSummary& c : s.cutoffs) {
+    cutoffs.push_back({{"max_depth_m", c.max_depth_m},
+                       {"points", c.points},
+                       {"mean_m", c.mean_m},
+                       {"relative", c.relative},
+                       {"completeness", c.completeness},
+                       {"completeness_near_horizontal", c.completeness_horizontal}});
+  }
+  j["cutoffs"] = cutoffs;
   return j;
 }
 
@@ -219,16 +245,21 @@ std::string TrajectoryEvaluationTable(const TrajectoryEvaluation& e) {
 
 std::string DepthTable(const eval::DepthErrorSummary& s) {
   return StrFormat(
-      "depth (%zu points over %zu maps, true depth %.1f m on average): mean %.3f m, median %.3f m, "
-      "relative %.2f %% (median %.2f %%, %.1f %% of points > 10 %% off; %.2f %% on the %.1f %% of "
-      "points at depth discontinuities, %.2f %% elsewhere); disparity error %.2f px (median "
-      "%.2f px); completeness %.1f %% (near-horizontal edges %.1f %%, others %.1f %%), %.1f %% "
-      "of the blocks with edges reached\n",
-      s.points, s.frames, s.mean_true_depth_m, s.mean_m, s.median_m, 100.0 * s.relative,
-      100.0 * s.relative_median, 100.0 * s.outliers, 100.0 * s.relative_discontinuity,
-      s.points > 0 ? 100.0 * s.points_discontinuity / s.points : 0.0, 100.0 * s.relative_continuous,
-      s.disparity_error_px, s.disparity_error_median_px, 100.0 * s.completeness,
-      100.0 * s.completeness_horizontal, 100.0 * s.completeness_other, 100.0 * s.block_coverage);
+             "depth (%zu points over %zu maps, true depth %.1f m on average): mean %.3f m, median "
+             "%.3f m, "
+             "relative %.2f %% (median %.2f %%, %.1f %% of points > 10 %% off; %.2f %% on the %.1f "
+             "%% of "
+             "points at depth discontinuities, %.2f %% elsewhere); disparity error %.2f px (median "
+             "%.2f px); completeness %.1f %% (near-horizontal edges %.1f %%, others %.1f %%), %.1f "
+             "%% "
+             "of the blocks with edges reached\n",
+             s.points, s.frames, s.mean_true_depth_m, s.mean_m, s.median_m, 100.0 * s.relative,
+             100.0 * s.relative_median, 100.0 * s.outliers, 100.0 * s.relative_discontinuity,
+             s.points > 0 ? 100.0 * s.points_discontinuity / s.points : 0.0,
+             100.0 * s.relative_continuous, s.disparity_error_px, s.disparity_error_median_px,
+             100.0 * s.completeness, 100.0 * s.completeness_horizontal,
+             100.0 * s.completeness_other, 100.0 * s.block_coverage) +
+         DepthCutoffLine(s);
 }
 
 std::string SampleCeilingLine(const eval::DepthErrorSummary& c) {
