@@ -4,6 +4,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -53,6 +54,7 @@ struct SegmentMatch {
   double dz_per_px = 0.0;
 };
 
+// What became of a candidate; the order is TemporalMatchStats' (MatchTemporal counts by it).
 enum class Outcome : std::uint8_t {
   kMatched,
   kNoSegment,
@@ -210,32 +212,15 @@ std::vector<Match> MatchTemporal(const TemporalStereoInput& input,
       outcomes[i] = MatchOne(input, points[i], stereo, config, rho_lo, rho_hi, &results[i]);
     });
   }
-  TemporalMatchStats counts;
+  // Counted by outcome, in the order of both Outcome and TemporalMatchStats.
+  std::array<int, 6> n{};
   std::vector<Match> matches;
   for (std::size_t i = 0; i < points.size(); ++i) {
-    switch (outcomes[i]) {
-      case Outcome::kMatched:
-        ++counts.matched;
-        matches.push_back(results[i]);
-        break;
-      case Outcome::kNoSegment:
-        ++counts.no_segment;
-        break;
-      case Outcome::kNoMatch:
-        ++counts.no_match;
-        break;
-      case Outcome::kIllConditioned:
-        ++counts.ill_conditioned;
-        break;
-      case Outcome::kCheckRejected:
-        ++counts.check_rejected;
-        break;
-      case Outcome::kOutOfRange:
-        ++counts.out_of_range;
-        break;
-    }
+    ++n[static_cast<std::size_t>(outcomes[i])];
+    if (outcomes[i] == Outcome::kMatched) matches.push_back(results[i]);
   }
-  if (stats != nullptr) *stats = counts;
+  static_assert(sizeof(TemporalMatchStats) == sizeof(n), "one count per outcome");
+  if (stats != nullptr) *stats = {n[0], n[1], n[2], n[3], n[4], n[5]};
   return matches;
 }
 
