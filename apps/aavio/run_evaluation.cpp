@@ -244,22 +244,18 @@ std::string TrajectoryEvaluationTable(const TrajectoryEvaluation& e) {
 }
 
 std::string DepthTable(const eval::DepthErrorSummary& s) {
-  return StrFormat(
-             "depth (%zu points over %zu maps, true depth %.1f m on average): mean %.3f m, median "
-             "%.3f m, "
-             "relative %.2f %% (median %.2f %%, %.1f %% of points > 10 %% off; %.2f %% on the %.1f "
-             "%% of "
-             "points at depth discontinuities, %.2f %% elsewhere); disparity error %.2f px (median "
-             "%.2f px); completeness %.1f %% (near-horizontal edges %.1f %%, others %.1f %%), %.1f "
-             "%% "
-             "of the blocks with edges reached\n",
-             s.points, s.frames, s.mean_true_depth_m, s.mean_m, s.median_m, 100.0 * s.relative,
-             100.0 * s.relative_median, 100.0 * s.outliers, 100.0 * s.relative_discontinuity,
-             s.points > 0 ? 100.0 * s.points_discontinuity / s.points : 0.0,
-             100.0 * s.relative_continuous, s.disparity_error_px, s.disparity_error_median_px,
-             100.0 * s.completeness, 100.0 * s.completeness_horizontal,
-             100.0 * s.completeness_other, 100.0 * s.block_coverage) +
-         DepthCutoffLine(s);
+  const std::string overall = StrFormat(
+      "depth (%zu points over %zu maps, true depth %.1f m on average): mean %.3f m, median %.3f m, "
+      "relative %.2f %% (median %.2f %%, %.1f %% of points > 10 %% off; %.2f %% on the %.1f %% of "
+      "points at depth discontinuities, %.2f %% elsewhere); disparity error %.2f px (median "
+      "%.2f px); completeness %.1f %% (near-horizontal edges %.1f %%, others %.1f %%), %.1f %% "
+      "of the blocks with edges reached\n",
+      s.points, s.frames, s.mean_true_depth_m, s.mean_m, s.median_m, 100.0 * s.relative,
+      100.0 * s.relative_median, 100.0 * s.outliers, 100.0 * s.relative_discontinuity,
+      s.points > 0 ? 100.0 * s.points_discontinuity / s.points : 0.0, 100.0 * s.relative_continuous,
+      s.disparity_error_px, s.disparity_error_median_px, 100.0 * s.completeness,
+      100.0 * s.completeness_horizontal, 100.0 * s.completeness_other, 100.0 * s.block_coverage);
+  return overall + DepthCutoffLine(s);
 }
 
 std::string SampleCeilingLine(const eval::DepthErrorSummary& c) {
