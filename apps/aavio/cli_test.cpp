@@ -352,6 +352,17 @@ TEST(Cli, RunOdometryWritesItsOutputsAndIsDeterministic) {
   EXPECT_GT(j["accuracy"]["pairs"].get<int>(), 100);
   EXPECT_GT(j["peak_rss_mb"].get<double>(), 0.0);
   EXPECT_GT(j["depth"]["points"].get<int>(), 0);
+  // Per mapping cycle: what each kind of stereo matched, and where temporal candidates were lost
+  // (their outcomes add up to the candidates).
+  const nlohmann::json& per_cycle = j["mapping_per_cycle"];
+  EXPECT_GT(j["mapping_cycles"].get<int>(), 10);
+  EXPECT_GT(per_cycle["static_matches"].get<double>(), 0.0);
+  EXPECT_GT(per_cycle["temporal_candidates"].get<double>(), 0.0);
+  double outcomes = per_cycle["temporal_matches"].get<double>();
+  for (const char* lost : {"temporal_no_segment", "temporal_no_match", "temporal_ill_conditioned",
+                           "temporal_check_rejected", "temporal_out_of_range"})
+    outcomes += per_cycle[lost].get<double>();
+  EXPECT_NEAR(outcomes, per_cycle["temporal_candidates"].get<double>(), 1e-9);
   // Mapping inside each tick (no concurrent cycle): maps one tick earlier, so a different but
   // equally valid trajectory.
   r = RunAavio({"run", seq, "--out", two, "--quiet", "--set", "pipeline.concurrent_mapping=false"});

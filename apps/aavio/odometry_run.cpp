@@ -17,6 +17,7 @@
 #include "aavio/pipeline/odometry.hpp"
 #include "aavio/pipeline/stage_timings.hpp"
 #include "config_resolution.hpp"
+#include "mapping_counts.hpp"
 #include "run_evaluation.hpp"
 
 namespace aavio::cli {
@@ -132,7 +133,8 @@ Expected<OdometryRunResult> RunOdometry(const OdometryRunRequest& request, Conte
   std::vector<geometry::StampedPose> trajectory;
   pipeline::StageTimings timings;
   std::map<std::string, int> status_counts, lost_reasons;
-  int bootstraps = 0, reinitialisations = 0, cycles = 0, skipped_cycles = 0;
+  int bootstraps = 0, reinitialisations = 0, cycles = 0, skipped_cycles = 0, mapping_cycles = 0;
+  MappingCounts mapping_counts;
   std::ofstream csv(fs::path(request.out_dir) / "timings.csv");
   csv << "t_s,status,time_surface_ms,aa_ms,sampling_ms,tracking_ms,iterations,mapping_ms,"
          "map_points,lost_reason\n";
@@ -166,8 +168,10 @@ Expected<OdometryRunResult> RunOdometry(const OdometryRunRequest& request, Conte
     skipped_cycles += t.mapping_skipped;
     reinitialisations += t.reinitialised;
     double mapping_ms = 0.0;
+    mapping_cycles += t.mapped ? 1 : 0;
     if (t.mapped && !t.bootstrap) {
       const mapping::MappingCycleReport& r = t.mapping;
+      mapping_counts.Add(r);
       timings.Add("matching", r.matching_ms, r.static_candidates + r.temporal_candidates);
       timings.Add("depth_refinement", r.refinement_ms, r.static_matches + r.temporal_matches);
       timings.Add("fusion", r.fusion_ms, r.map_points);
@@ -285,7 +289,9 @@ Expected<OdometryRunResult> RunOdometry(const OdometryRunRequest& request, Conte
   summary["bootstraps"] = bootstraps;
   summary["reinitialisations"] = reinitialisations;
   summary["real_time_mode"] = config.pipeline.real_time;
+  summary["mapping_cycles"] = mapping_cycles;
   summary["mapping_cycles_skipped"] = skipped_cycles;
+  summary["mapping_per_cycle"] = mapping_counts.PerCycleJson(mapping_cycles);
   summary["map_points_global"] = cloud.points().size();
   const auto [rss_mb, peak_mb] = MemoryMb();
   summary["peak_rss_mb"] = peak_mb;

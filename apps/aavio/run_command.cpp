@@ -10,7 +10,6 @@
 #include <chrono>
 #include <csignal>
 #include <filesystem>
-#include <map>
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
 #include <optional>
@@ -29,6 +28,7 @@
 #include "aavio/pipeline/stage_timings.hpp"
 #include "cli.hpp"
 #include "config_resolution.hpp"
+#include "mapping_counts.hpp"
 #include "odometry_run.hpp"
 #include "run_evaluation.hpp"
 #include "sequence_opening.hpp"
@@ -178,7 +178,7 @@ Status Run(RunOptions options, Context& ctx) {
   Status cycle_status = Status::Ok();
   std::int64_t cycles = 0, bootstraps = 0, depth_maps = 0;
   std::size_t map_points_sum = 0;
-  std::map<std::string, double> counts;  // summed over mapping cycles
+  MappingCounts counts;
 
   pipeline::MappingFrontEnd front_end(rig, *config, *poses, begin);
   front_end.on_tick = [&](const events::RepresentationTimings& t) {
@@ -201,21 +201,7 @@ Status Run(RunOptions options, Context& ctx) {
       timings.Add("depth_refinement", r.refinement_ms, r.static_matches + r.temporal_matches);
       timings.Add("fusion", r.fusion_ms, r.map_points);
       timings.Add("mapping_total", r.total_ms, r.samples);
-      for (const auto& [name, value] :
-           {std::pair{"static_candidates", r.static_candidates},
-            std::pair{"temporal_candidates", r.temporal_candidates},
-            std::pair{"static_matches", r.static_matches},
-            std::pair{"temporal_matches", r.temporal_matches},
-            std::pair{"static_points", r.static_points},
-            std::pair{"temporal_points", r.temporal_points},
-            std::pair{"temporal_no_segment", r.temporal.no_segment},
-            std::pair{"temporal_no_match", r.temporal.no_match},
-            std::pair{"temporal_ill_conditioned", r.temporal.ill_conditioned},
-            std::pair{"temporal_check_rejected", r.temporal.check_rejected},
-            std::pair{"temporal_out_of_range", r.temporal.out_of_range},
-            std::pair{"cycles_with_partner", r.has_partner ? 1 : 0}}) {
-        counts[name] += value;
-      }
+      counts.Add(r);
     }
     // Only cycles whose samples went into the fusion count for the ceiling.
     const bool fused = cycle.bootstrap || cycle.report.fused_cycles > 0;
@@ -290,8 +276,7 @@ Status Run(RunOptions options, Context& ctx) {
   summary["depth_maps"] = depth_maps;
   summary["mean_map_points"] =
       depth_maps > 0 ? static_cast<double>(map_points_sum) / depth_maps : 0.0;
-  for (const auto& [name, total] : counts)
-    summary["mapping_per_cycle"][name] = cycles > 0 ? total / static_cast<double>(cycles) : 0.0;
+  summary["mapping_per_cycle"] = counts.PerCycleJson(cycles);
   for (const auto& [stage, s] : timings.Summary()) {
     summary["stages"][stage] = {{"median_ms", s.median_ms},
                                 {"p95_ms", s.p95_ms},
