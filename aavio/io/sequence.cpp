@@ -6,6 +6,7 @@
 
 #include "aavio/io/config_yaml.hpp"
 #include "aavio/io/dsec_h5_reader.hpp"
+#include "aavio/io/prophesee_raw.hpp"
 #include "aavio/io/rosbag_messages.hpp"
 #include "aavio/io/yaml_reading.hpp"
 
@@ -15,21 +16,29 @@ namespace fs = std::filesystem;
 
 const char* SourceFormatName(SourceFormat format) {
   switch (format) {
-    case SourceFormat::kDsecH5: return "dsec_h5";
-    case SourceFormat::kBag: return "bag";
-    case SourceFormat::kText: return "text";
+    case SourceFormat::kDsecH5:
+      return "dsec_h5";
+    case SourceFormat::kBag:
+      return "bag";
+    case SourceFormat::kText:
+      return "text";
+    case SourceFormat::kPropheseeRaw:
+      return "prophesee_raw";
   }
   return "?";
 }
 
 Expected<SourceFormat> DetectSourceFormat(const std::string& path) {
   std::string ext = fs::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
   if (ext == ".h5" || ext == ".hdf5") return SourceFormat::kDsecH5;
   if (ext == ".bag") return SourceFormat::kBag;
   if (ext == ".txt") return SourceFormat::kText;
+  if (ext == ".raw") return SourceFormat::kPropheseeRaw;
   return InvalidArgument(path + ": unknown data format '" + ext +
-                         "'; aavio reads DSEC-layout .h5, ROS1 .bag and text .txt files");
+                         "'; aavio reads DSEC-layout .h5, ROS1 .bag, text .txt and Prophesee "
+                         ".raw files");
 }
 
 namespace {
@@ -40,8 +49,8 @@ std::string Resolve(const fs::path& base, const std::string& p) {
   return path.is_absolute() ? path.string() : (base / path).lexically_normal().string();
 }
 
-Status CheckKeys(const YAML::Node& node, const std::set<std::string>& known, const std::string& where,
-                 const std::string& section) {
+Status CheckKeys(const YAML::Node& node, const std::set<std::string>& known,
+                 const std::string& where, const std::string& section) {
   if (!node.IsMap()) return ParseError(where + ": " + section + " must be a mapping");
   for (const auto& item : node) {
     const std::string key = item.first.as<std::string>();
@@ -65,15 +74,16 @@ Expected<SequenceDescription> ReadSequenceYaml(const std::string& path) {
   Expected<YAML::Node> root = yaml::LoadFile(path);
   if (!root) return root.status();
   const fs::path base = fs::path(path).parent_path();
-  AAVIO_RETURN_IF_ERROR(
-      CheckKeys(*root, {"name", "calibration", "events", "imu", "ground_truth", "format"}, path, ""));
+  AAVIO_RETURN_IF_ERROR(CheckKeys(
+      *root, {"name", "calibration", "events", "imu", "ground_truth", "format"}, path, ""));
   SequenceDescription d;
   d.origin = path;
   d.name = Scalar(*root, "name");
   if (d.name.empty()) d.name = fs::absolute(path).parent_path().filename().string();
   d.calibration = Resolve(base, Scalar(*root, "calibration"));
 
-  Expected<YAML::Node> events = yaml::Child(*root, "events", path, "the left and right event files");
+  Expected<YAML::Node> events =
+      yaml::Child(*root, "events", path, "the left and right event files");
   if (!events) return events.status();
   AAVIO_RETURN_IF_ERROR(
       CheckKeys(*events, {"left", "right", "left_topic", "right_topic"}, path, "events."));
@@ -155,10 +165,12 @@ Status WriteSequenceYaml(const std::string& path, const SequenceDescription& d) 
   }
   if (d.gt_trajectory) {
     add("ground_truth.trajectory", rel(d.gt_trajectory->path));
-    if (d.gt_trajectory->format == SourceFormat::kBag) add("ground_truth.topic", d.gt_trajectory->topic);
+    if (d.gt_trajectory->format == SourceFormat::kBag)
+      add("ground_truth.topic", d.gt_trajectory->topic);
   }
   add("ground_truth.depth", rel(d.gt_depth));
-  return WriteTextFile(path, FormatConfigYaml(entries, "aavio sequence description (design.md §4)"));
+  return WriteTextFile(path,
+                       FormatConfigYaml(entries, "aavio sequence description (design.md §4)"));
 }
 
 Expected<SequenceDescription> DescribeSequence(const std::string& path,
@@ -181,12 +193,14 @@ Expected<SequenceDescription> DescribeSequence(const std::string& path,
       if (fs::is_regular_file(p / "calibration" / "cam_to_cam.yaml", ec)) {
         d.calibration = (p / "calibration" / "cam_to_cam.yaml").string();
       }
-      if (fs::is_directory(p / "disparity" / "event", ec)) d.gt_depth = (p / "disparity" / "event").string();
+      if (fs::is_directory(p / "disparity" / "event", ec))
+        d.gt_depth = (p / "disparity" / "event").string();
       if (!fs::is_regular_file(d.right.path, ec)) {
         return NotFound(path + ": a DSEC folder needs events/right/events.h5 too");
       }
     } else {
-      return NotFound(path + ": no sequence here; expected sequence.yaml, or a DSEC sequence "
+      return NotFound(path +
+                      ": no sequence here; expected sequence.yaml, or a DSEC sequence "
                       "folder (events/left/events.h5, events/right/events.h5, "
                       "calibration/cam_to_cam.yaml)");
     }
@@ -203,14 +217,16 @@ Expected<SequenceDescription> DescribeSequence(const std::string& path,
     if (!bag) return bag.status();
     for (const rosbag::Connection& c : (*bag)->connections()) {
       if (c.md5sum == std::string(rosbag::kImu.md5sum) && !d.imu) {
-        d.imu = SourceSpec{SourceFormat::kBag, path, "", {}};  // the only IMU topic, checked on open
+        d.imu =
+            SourceSpec{SourceFormat::kBag, path, "", {}};  // the only IMU topic, checked on open
       }
       if (c.md5sum == std::string(rosbag::kPoseStamped.md5sum) && !d.gt_trajectory) {
         d.gt_trajectory = SourceSpec{SourceFormat::kBag, path, "", {}};
       }
     }
   } else {
-    return InvalidArgument(path + ": not a sequence; give a sequence.yaml, a folder holding one, a "
+    return InvalidArgument(path +
+                           ": not a sequence; give a sequence.yaml, a folder holding one, a "
                            "DSEC sequence folder or a .bag file");
   }
   if (!calibration.empty()) d.calibration = calibration;
@@ -235,6 +251,11 @@ Expected<std::unique_ptr<EventStream>> OpenEventStream(const SourceSpec& spec,
       if (!s) return s.status();
       return std::unique_ptr<EventStream>(std::move(*s));
     }
+    case SourceFormat::kPropheseeRaw: {
+      auto s = PropheseeRawEventStream::Open(spec.path, options);
+      if (!s) return s.status();
+      return std::unique_ptr<EventStream>(std::move(*s));
+    }
   }
   return InvalidArgument(spec.path + ": unknown format");
 }
@@ -254,8 +275,8 @@ Expected<std::unique_ptr<ImuStream>> OpenImuStream(const SourceSpec& spec,
   return InvalidArgument(spec.path + ": IMU data are read from .txt or .bag files");
 }
 
-Expected<std::unique_ptr<SequenceReader>> SequenceReader::Open(const SequenceDescription& d,
-                                                               const SequenceReaderOptions& options) {
+Expected<std::unique_ptr<SequenceReader>> SequenceReader::Open(
+    const SequenceDescription& d, const SequenceReaderOptions& options) {
   if (options.packet_ns <= 0) return InvalidArgument("packet length must be positive");
   Expected<std::unique_ptr<EventStream>> left = OpenEventStream(d.left, options.stream);
   if (!left) return left.status();
@@ -267,11 +288,13 @@ Expected<std::unique_ptr<SequenceReader>> SequenceReader::Open(const SequenceDes
     if (!opened) return opened.status();
     imu = std::move(*opened);
   }
-  return std::make_unique<SequenceReader>(std::move(*left), std::move(*right), std::move(imu), options);
+  return std::make_unique<SequenceReader>(std::move(*left), std::move(*right), std::move(imu),
+                                          options);
 }
 
-SequenceReader::SequenceReader(std::unique_ptr<EventStream> left, std::unique_ptr<EventStream> right,
-                               std::unique_ptr<ImuStream> imu, const SequenceReaderOptions& options)
+SequenceReader::SequenceReader(std::unique_ptr<EventStream> left,
+                               std::unique_ptr<EventStream> right, std::unique_ptr<ImuStream> imu,
+                               const SequenceReaderOptions& options)
     : left_(std::move(left)), right_(std::move(right)), imu_(std::move(imu)), options_(options) {
   bool first = true;
   auto extend = [&](const StreamInfo& info) {

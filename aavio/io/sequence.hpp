@@ -5,7 +5,7 @@
 ///   name: box2_twin
 ///   calibration: calibration            # ESVO folder, left.yaml, or DSEC cam_to_cam.yaml
 ///   events:
-///     left: events/left/events.h5       # .h5 DSEC layout | .bag ROS1 bag | .txt text
+///     left: events/left/events.h5       # .h5 DSEC layout | .bag ROS1 bag | .txt text | .raw
 ///     right: events/right/events.h5
 ///     left_topic: /davis/left/events    # bags only (these are the defaults)
 ///     right_topic: /davis/right/events
@@ -34,15 +34,15 @@
 
 namespace aavio::io {
 
-enum class SourceFormat { kDsecH5, kBag, kText };
+enum class SourceFormat { kDsecH5, kBag, kText, kPropheseeRaw };
 const char* SourceFormatName(SourceFormat format);
-/// From the file name: .h5/.hdf5 DSEC layout, .bag, .txt; otherwise an error.
+/// From the file name: .h5/.hdf5 DSEC layout, .bag, .txt, .raw (Prophesee); otherwise an error.
 Expected<SourceFormat> DetectSourceFormat(const std::string& path);
 
 struct SourceSpec {
   SourceFormat format = SourceFormat::kDsecH5;
-  std::string path;   ///< absolute, or relative to the working folder
-  std::string topic;  ///< bags
+  std::string path;                                ///< absolute, or relative to the working folder
+  std::string topic;                               ///< bags
   ImuTextLayout imu_layout = ImuTextLayout::kEcd;  ///< IMU text files
 };
 
@@ -90,7 +90,7 @@ struct SequenceReaderOptions {
 class SequenceReader {
  public:
   static Expected<std::unique_ptr<SequenceReader>> Open(const SequenceDescription& description,
-                                                       const SequenceReaderOptions& options);
+                                                        const SequenceReaderOptions& options);
   SequenceReader(std::unique_ptr<EventStream> left, std::unique_ptr<EventStream> right,
                  std::unique_ptr<ImuStream> imu, const SequenceReaderOptions& options);
 

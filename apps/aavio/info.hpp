@@ -8,9 +8,10 @@
 
 namespace aavio::cli {
 
-/// True for event files (.h5, .bag, .txt), sequence.yaml and folders holding a sequence.
+/// True for event files (.h5, .bag, .txt, .raw), sequence.yaml and folders holding a sequence.
 bool LooksLikeData(const std::string& path);
-/// Fills `json` and a human-readable `text` describing the data at `path`.
-Status DescribeData(const std::string& path, nlohmann::json* json, std::string* text);
+/// Fills `json` and a human-readable `text` describing the data at `path`; with `stats`, each
+/// event stream's sensor statistics too (events/event_statistics.hpp).
+Status DescribeData(const std::string& path, bool stats, nlohmann::json* json, std::string* text);
 
 }  // namespace aavio::cli

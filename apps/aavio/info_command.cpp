@@ -1,4 +1,4 @@
-// `aavio info PATH`: what a calibration (and, as readers land, a sequence or file) holds.
+// `aavio info PATH`: what a calibration, an event file or a sequence holds.
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>
@@ -19,6 +19,7 @@ namespace {
 struct InfoOptions {
   std::string path;
   bool json = false;
+  bool stats = false;
 };
 
 double Degrees(const Eigen::Matrix3d& R) {
@@ -54,7 +55,7 @@ double ValidShare(const cv::Mat& mask) {
 int RunInfoOnData(const InfoOptions& options, Context& ctx) {
   nlohmann::json j;
   std::string text;
-  Status status = DescribeData(options.path, &j, &text);
+  Status status = DescribeData(options.path, options.stats, &j, &text);
   if (!status.ok()) {
     ctx.err << "aavio info: error: " << status.message() << "\n";
     return kExitError;
@@ -69,6 +70,12 @@ int RunInfoOnData(const InfoOptions& options, Context& ctx) {
 
 int RunInfo(const InfoOptions& options, Context& ctx) {
   if (LooksLikeData(options.path)) return RunInfoOnData(options, ctx);
+  if (options.stats) {
+    ctx.err << "aavio info: error: --stats describes event data (.h5, .bag, .txt, .raw or a "
+               "sequence); "
+            << options.path << " is not\n";
+    return kExitUsage;
+  }
   Expected<io::LoadedCalibration> loaded = io::LoadCalibration(options.path);
   if (!loaded) {
     ctx.err << "aavio info: error: " << loaded.status().message() << "\n";
@@ -154,10 +161,13 @@ void RegisterInfo(CLI::App& app, Context& ctx) {
   auto options = std::make_shared<InfoOptions>();
   CLI::App* sub = app.add_subcommand(
       "info",
-      "Describe a calibration: a folder with left.yaml + right.yaml, either file, or a "
-      "DSEC cam_to_cam.yaml");
+      "Describe a calibration (a folder with left.yaml + right.yaml, either file, or a DSEC "
+      "cam_to_cam.yaml), an event file (.h5, .bag, .txt, Prophesee .raw) or a sequence");
   sub->add_option("path", options->path, "File or folder to describe")->required();
   sub->add_flag("--json", options->json, "Print JSON for scripts");
+  sub->add_flag("--stats", options->stats,
+                "Sensor statistics of the events: rate, ON/OFF ratio, isolated (noise-like) "
+                "events, same-pixel intervals, hot pixels, events per edge passage");
   sub->callback(
       [&ctx, options] { ctx.action = [&ctx, options] { return RunInfo(*options, ctx); }; });
 }

@@ -1,10 +1,11 @@
-// `aavio info` on data: an event file (.h5, .txt), a bag, or a whole sequence.
+// `aavio info` on data: an event file (.h5, .txt, .raw), a bag, or a whole sequence.
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <ostream>
 #include <set>
 
 #include "aavio/common/format.hpp"
+#include "aavio/events/event_statistics.hpp"
 #include "aavio/io/bag_streams.hpp"
 #include "aavio/io/calibration.hpp"
 #include "aavio/io/dsec_h5_reader.hpp"
@@ -44,8 +45,52 @@ std::string EventText(const io::EventStats& s, const io::StreamInfo& info) {
   return text;
 }
 
+/// The sensor statistics of a stream (a second pass over it).
+Status DescribeSensorStatistics(const io::SourceSpec& spec, const io::StreamOptions& options,
+                                int width, int height, nlohmann::json* j, std::string* text) {
+  Expected<std::unique_ptr<io::EventStream>> stream = io::OpenEventStream(spec, options);
+  if (!stream) return stream.status();
+  events::EventStatisticsAccumulator accumulator(width, height);
+  std::vector<events::Event> block;
+  TimeNs until = (*stream)->info().t_first_ns;
+  while (!(*stream)->AtEnd()) {
+    until += 100 * kNsPerMs;
+    block.clear();
+    AAVIO_RETURN_IF_ERROR((*stream)->ReadUntil(until, &block));
+    accumulator.Add(block);
+  }
+  const events::EventStatistics s = accumulator.Finish();
+  (*j)["stats"] = {{"rate_ev_s", s.rate_ev_s},
+                   {"rate_ev_px_s", s.rate_ev_px_s},
+                   {"rate_without_hot_ev_px_s", s.rate_without_hot_ev_px_s},
+                   {"on_fraction", s.on_fraction},
+                   {"active_pixel_share", s.active_pixel_share},
+                   {"isolated_share", s.isolated_share},
+                   {"hot_pixels", s.hot_pixels},
+                   {"hot_pixel_share", s.hot_pixel_share},
+                   {"hot_event_share", s.hot_event_share},
+                   {"interval_p01_us", s.interval_p01_us},
+                   {"interval_median_ms", s.interval_median_ms},
+                   {"events_per_passage", s.events_per_passage},
+                   {"sensor", {width, height}}};
+  *text +=
+      StrFormat("  %-16s %.3f Mev/s, %.3f ev/px/s (%.3f without hot pixels), ON %.2f\n", "stats",
+                s.rate_ev_s * 1e-6, s.rate_ev_px_s, s.rate_without_hot_ev_px_s, s.on_fraction);
+  *text += StrFormat("  %-16s %.1f %% of %d x %d pixels active, %.1f %% of events isolated\n", "",
+                     100.0 * s.active_pixel_share, width, height, 100.0 * s.isolated_share);
+  *text += StrFormat("  %-16s same-pixel interval 1st percentile %.0f us, median %.2f ms\n", "",
+                     s.interval_p01_us, s.interval_median_ms);
+  *text += StrFormat(
+      "  %-16s %lld hot pixels (%.3f %%) with %.1f %% of events; %.2f events per "
+      "edge passage\n",
+      "", static_cast<long long>(s.hot_pixels), 100.0 * s.hot_pixel_share,
+      100.0 * s.hot_event_share, s.events_per_passage);
+  return Status::Ok();
+}
+
 Status DescribeEvents(const std::string& label, const io::SourceSpec& spec,
-                      const io::StreamOptions& options, nlohmann::json* j, std::string* text) {
+                      const io::StreamOptions& options, bool with_stats, nlohmann::json* j,
+                      std::string* text) {
   Expected<std::unique_ptr<io::EventStream>> stream = io::OpenEventStream(spec, options);
   if (!stream) return stream.status();
   Expected<io::EventStats> stats = io::ComputeEventStats(**stream);
@@ -53,7 +98,16 @@ Status DescribeEvents(const std::string& label, const io::SourceSpec& spec,
   (*j)[label] = EventJson(*stats, (*stream)->info());
   *text += StrFormat("  %-16s %s\n", label.c_str(), EventText(*stats, (*stream)->info()).c_str());
   *text += StrFormat("  %-16s %s\n", "", (*stream)->info().description.c_str());
-  return Status::Ok();
+  if (!with_stats || stats->count == 0) return Status::Ok();
+  // The sensor's size: the file's (or calibration's), else the largest coordinates seen.
+  const io::StreamInfo& info = (*stream)->info();
+  const int width = options.width > 0 ? options.width
+                    : info.width > 0  ? info.width
+                                      : stats->max_x + 1;
+  const int height = options.height > 0 ? options.height
+                     : info.height > 0  ? info.height
+                                        : stats->max_y + 1;
+  return DescribeSensorStatistics(spec, options, width, height, &(*j)[label], text);
 }
 
 Status DescribeImu(const io::SourceSpec& spec, const io::StreamOptions& options, nlohmann::json* j,
@@ -74,7 +128,7 @@ Status DescribeImu(const io::SourceSpec& spec, const io::StreamOptions& options,
   return Status::Ok();
 }
 
-Status DescribeBag(const std::string& path, nlohmann::json* j, std::string* text) {
+Status DescribeBag(const std::string& path, bool with_stats, nlohmann::json* j, std::string* text) {
   Expected<std::unique_ptr<io::rosbag::BagFile>> bag = io::rosbag::BagFile::Open(path);
   if (!bag) return bag.status();
   (*j)["kind"] = "bag";
@@ -86,8 +140,8 @@ Status DescribeBag(const std::string& path, nlohmann::json* j, std::string* text
     topics[c.topic] = {{"type", c.type}, {"md5sum", c.md5sum}};
     if (c.md5sum == io::rosbag::kEventArray.md5sum ||
         c.md5sum == io::rosbag::kLegacyEventArrayMd5) {
-      AAVIO_RETURN_IF_ERROR(
-          DescribeEvents(c.topic, {io::SourceFormat::kBag, path, c.topic, {}}, {}, j, text));
+      AAVIO_RETURN_IF_ERROR(DescribeEvents(c.topic, {io::SourceFormat::kBag, path, c.topic, {}}, {},
+                                           with_stats, j, text));
     } else if (c.md5sum == io::rosbag::kImu.md5sum) {
       AAVIO_RETURN_IF_ERROR(DescribeImu({io::SourceFormat::kBag, path, c.topic, {}}, {}, j, text));
     }
@@ -96,7 +150,7 @@ Status DescribeBag(const std::string& path, nlohmann::json* j, std::string* text
   return Status::Ok();
 }
 
-Status DescribeSequenceData(const io::SequenceDescription& d, nlohmann::json* j,
+Status DescribeSequenceData(const io::SequenceDescription& d, bool with_stats, nlohmann::json* j,
                             std::string* text) {
   (*j)["kind"] = "sequence";
   (*j)["name"] = d.name;
@@ -118,8 +172,8 @@ Status DescribeSequenceData(const io::SequenceDescription& d, nlohmann::json* j,
   } else {
     *text += StrFormat("  %-16s none given\n", "calibration");
   }
-  AAVIO_RETURN_IF_ERROR(DescribeEvents("left", d.left, options, j, text));
-  AAVIO_RETURN_IF_ERROR(DescribeEvents("right", d.right, options, j, text));
+  AAVIO_RETURN_IF_ERROR(DescribeEvents("left", d.left, options, with_stats, j, text));
+  AAVIO_RETURN_IF_ERROR(DescribeEvents("right", d.right, options, with_stats, j, text));
   if (d.imu) {
     AAVIO_RETURN_IF_ERROR(DescribeImu(*d.imu, options, j, text));
   } else {
@@ -152,15 +206,16 @@ bool LooksLikeData(const std::string& path) {
            fs::is_regular_file(p / "events" / "left" / "events.h5", ec);
   }
   const std::string ext = p.extension().string();
-  if (ext == ".h5" || ext == ".hdf5" || ext == ".bag" || ext == ".txt") return true;
+  if (ext == ".h5" || ext == ".hdf5" || ext == ".bag" || ext == ".txt" || ext == ".raw")
+    return true;
   return p.filename() == "sequence.yaml";
 }
 
-Status DescribeData(const std::string& path, nlohmann::json* j, std::string* text) {
+Status DescribeData(const std::string& path, bool stats, nlohmann::json* j, std::string* text) {
   (*j)["path"] = path;
   const fs::path p(path);
   const std::string ext = p.extension().string();
-  if (ext == ".bag") return DescribeBag(path, j, text);
+  if (ext == ".bag") return DescribeBag(path, stats, j, text);
   if (ext == ".h5" || ext == ".hdf5") {
     if (Expected<cv::Mat> map = io::ReadDsecRectifyMap(path); map.ok()) {
       (*j)["kind"] = "rectify_map";
@@ -171,16 +226,18 @@ Status DescribeData(const std::string& path, nlohmann::json* j, std::string* tex
     }
     (*j)["kind"] = "events";
     *text += "events  " + path + "\n";
-    return DescribeEvents("events", {io::SourceFormat::kDsecH5, path, "", {}}, {}, j, text);
+    return DescribeEvents("events", {io::SourceFormat::kDsecH5, path, "", {}}, {}, stats, j, text);
   }
-  if (ext == ".txt") {
+  if (ext == ".txt" || ext == ".raw") {
     (*j)["kind"] = "events";
     *text += "events  " + path + "\n";
-    return DescribeEvents("events", {io::SourceFormat::kText, path, "", {}}, {}, j, text);
+    const io::SourceFormat format =
+        ext == ".txt" ? io::SourceFormat::kText : io::SourceFormat::kPropheseeRaw;
+    return DescribeEvents("events", {format, path, "", {}}, {}, stats, j, text);
   }
   Expected<io::SequenceDescription> d = io::DescribeSequence(path);
   if (!d) return d.status();
-  return DescribeSequenceData(*d, j, text);
+  return DescribeSequenceData(*d, stats, j, text);
 }
 
 }  // namespace aavio::cli
