@@ -118,6 +118,137 @@ TEST(EventGenerator, RefractoryPeriodSuppressesFollowingEvents) {
   EXPECT_NEAR(static_cast<double>(out[1].t_ns - out[0].t_ns), 500'000.0, 2.0);
 }
 
+// Photoreceptor bandwidth: after a step of brightness the comparator sees a first-order
+// response, so the first event lags by τ·ln(1 / (1 − θ/Δ)), and τ grows as the light falls.
+TEST(EventGenerator, BandwidthDelaysEventsMoreInTheDark) {
+  auto first_event_lag_ns = [](float intensity_after) {
+    EventCameraConfig config = Ideal();
+    config.bandwidth_hz = 100.0;
+    EventGenerator gen(1, 1, config, 1);
+    const float eps = static_cast<float>(config.log_eps);
+    const float before = intensity_after * std::exp(-1.0f) - eps;
+    gen.Reset({before}, 0);
+    std::vector<events::Event> out;
+    gen.Step({intensity_after - eps}, 10'000, &out);  // the step, over 10 µs
+    for (int k = 1; k <= 2000 && out.empty(); ++k)
+      gen.Step({intensity_after - eps}, 10'000 + k * 10'000, &out);
+    return out.empty() ? -1.0 : static_cast<double>(out.front().t_ns);
+  };
+  const double tau_bright_ns = 1e9 / (2.0 * 3.14159265 * 100.0);  // intensity 1: 1.59 ms
+  const double expected = tau_bright_ns * std::log(1.0 / (1.0 - 0.25));
+  EXPECT_NEAR(first_event_lag_ns(1.0f), expected, 0.05 * expected);
+  EXPECT_NEAR(first_event_lag_ns(0.25f), 4.0 * expected, 0.05 * 4.0 * expected);
+  // Without the low-pass the event comes within the 10 µs step.
+  EventGenerator plain(1, 1, Ideal(), 1);
+  plain.Reset({std::exp(-1.0f)}, 0);
+  std::vector<events::Event> out;
+  plain.Step({1.0f}, 10'000, &out);
+  ASSERT_FALSE(out.empty());
+  EXPECT_LE(out.front().t_ns, 10'000);
+}
+
+// Leak: in a still scene every pixel fires ON events at its own rate, spread log-normally.
+TEST(EventGenerator, LeakFiresOnEventsAtTheConfiguredMedianRate) {
+  EventCameraConfig config = Ideal();
+  config.leak_rate_hz = 2.0;
+  config.leak_rate_spread = 0.3;
+  const int w = 40, h = 40;
+  EventGenerator gen(w, h, config, 5);
+  const std::vector<float> frame(w * h, 0.5f);
+  gen.Reset(frame, 0);
+  std::vector<events::Event> events;
+  for (int k = 1; k <= 500; ++k)
+    gen.Step(frame, k * 20 * kNsPerMs, &events);  // 10 s
+  std::vector<int> count(w * h, 0);
+  for (const events::Event& e : events) {
+    EXPECT_EQ(e.polarity, 1);
+    count[e.y * w + e.x]++;
+  }
+  std::vector<int> sorted = count;
+  std::nth_element(sorted.begin(), sorted.begin() + w * h / 2, sorted.end());
+  EXPECT_NEAR(sorted[w * h / 2] / 10.0, 2.0, 0.3);  // median rate
+  // The spread: 0.3 decades puts the 90th-percentile pixel about ×5.9 above the 10th.
+  std::sort(sorted.begin(), sorted.end());
+  const double ratio = static_cast<double>(sorted[w * h * 9 / 10]) / sorted[w * h / 10];
+  EXPECT_GT(ratio, 3.0);
+  EXPECT_LT(ratio, 10.0);
+  EXPECT_EQ(gen.noise_events(), 0);  // leak events come from the pixel's own comparator
+}
+
+// Shot noise: a dark pixel fires four times as often as a fully lit one.
+TEST(EventGenerator, ShotNoiseIsMoreFrequentInTheDark) {
+  EventCameraConfig config = Ideal();
+  config.shot_noise_rate_hz = 5.0;
+  const int w = 100, h = 50;
+  EventGenerator gen(w, h, config, 6);
+  std::vector<float> frame(w * h, 1.0f);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w / 2; ++x)
+      frame[y * w + x] = 1e-3f;  // left half dark
+  gen.Reset(frame, 0);
+  std::vector<events::Event> events;
+  for (int k = 1; k <= 200; ++k)
+    gen.Step(frame, k * 10 * kNsPerMs, &events);  // 2 s
+  double dark = 0, lit = 0;
+  for (const events::Event& e : events)
+    (e.x < w / 2 ? dark : lit) += 1.0;
+  const double pixels = w * h / 2.0;
+  EXPECT_NEAR(dark / pixels / 2.0, 5.0, 0.5);
+  EXPECT_NEAR(lit / pixels / 2.0, 1.25, 0.2);
+  for (std::size_t i = 1; i < events.size(); ++i)
+    ASSERT_LE(events[i - 1].t_ns, events[i].t_ns);
+}
+
+// Jitter moves timestamps by about its std and keeps them sorted.
+TEST(EventGenerator, TimestampJitterKeepsEventsSorted) {
+  auto run = [](double jitter_us) {
+    EventCameraConfig config = Ideal();
+    config.timestamp_jitter_us = jitter_us;
+    EventGenerator gen(1, 1, config, 2);
+    gen.Reset({std::exp(-3.0f)}, 0);
+    std::vector<events::Event> out;
+    gen.Step({std::exp(0.0f)}, 10 * kNsPerMs, &out);  // 12 crossings over 10 ms
+    return out;
+  };
+  const std::vector<events::Event> exact = run(0.0), jittered = run(50.0);
+  ASSERT_EQ(exact.size(), jittered.size());
+  double sq = 0.0;
+  for (std::size_t i = 0; i < exact.size(); ++i) {
+    sq += std::pow(static_cast<double>(jittered[i].t_ns - exact[i].t_ns), 2);
+    if (i > 0) {
+      ASSERT_LE(jittered[i - 1].t_ns, jittered[i].t_ns);
+    }
+  }
+  const double rms_us = std::sqrt(sq / static_cast<double>(exact.size())) * 1e-3;
+  EXPECT_GT(rms_us, 20.0);
+  EXPECT_LT(rms_us, 100.0);
+}
+
+// A saturated readout sends at most its rate, delays events, and drops those that would wait
+// longer than 1 ms.
+TEST(EventGenerator, ReadoutLimitsTheRateAndDropsTheBacklog) {
+  EventCameraConfig config = Ideal();
+  config.max_rate_mev_s = 1.0;  // one event per µs
+  const int w = 100, h = 100;
+  EventGenerator gen(w, h, config, 3);
+  gen.Reset(std::vector<float>(w * h, std::exp(-1.1f)), 0);
+  std::vector<events::Event> out;
+  gen.Step(std::vector<float>(w * h, 1.0f), 100'000, &out);  // 40 000 events in 100 µs
+  EXPECT_EQ(gen.signal_events(), 40'000);
+  ASSERT_FALSE(out.empty());
+  for (std::size_t i = 1; i < out.size(); ++i)
+    ASSERT_GE(out[i].t_ns - out[i - 1].t_ns, 1000);
+  // Crossings of log −1.1 → 0 come from 0.25/1.1 to 1.0/1.1 of the 100 µs step (22.7 to 90.9
+  // µs); the readout sends one per µs from the first, until the last one's 1 ms of waiting is up.
+  EXPECT_NEAR(static_cast<double>(out.size()), 90.9 + 1000.0 - 22.7, 3.0);
+  EXPECT_EQ(gen.dropped_events() + static_cast<std::int64_t>(out.size()), gen.signal_events());
+  // The next step continues after the delayed events, in time order.
+  std::vector<events::Event> next;
+  gen.Step(std::vector<float>(w * h, std::exp(1.0f)), 2'000'000, &next);
+  ASSERT_FALSE(next.empty());
+  EXPECT_GE(next.front().t_ns, out.back().t_ns);
+}
+
 TEST(EventGenerator, SameSeedSameEvents) {
   auto run = [](std::uint64_t seed) {
     EventCameraConfig config;

@@ -24,13 +24,6 @@ ImuNoiseModel ImuNoiseModel::Datasheet() {
   return m;
 }
 
-Expected<ImuNoiseModel> ImuNoiseModel::Named(const std::string& name) {
-  if (name == "esvo2") return ImuNoiseModel();
-  if (name == "datasheet") return Datasheet();
-  if (name == "perfect") return Perfect();
-  return InvalidArgument("IMU noise model '" + name + "': use esvo2, datasheet or perfect");
-}
-
 Status ImuNoiseModel::Validate() const {
   FieldChecker check;
   check.InRange("rate_hz", rate_hz, 1.0, 100000.0)
@@ -38,6 +31,10 @@ Status ImuNoiseModel::Validate() const {
       .NonNegative("accel_noise_density", accel_noise_density)
       .NonNegative("gyro_random_walk", gyro_random_walk)
       .NonNegative("accel_random_walk", accel_random_walk);
+  for (int k = 0; k < 3; ++k) {
+    check.InRange("gyro_bias", gyro_bias[k], -1.0, 1.0)
+        .InRange("accel_bias", accel_bias[k], -5.0, 5.0);
+  }
   return check.status();
 }
 

@@ -30,8 +30,16 @@ struct ImuNoiseModel {
   /// 0.005 °/s/√Hz, accelerometer 400 µg/√Hz — ~30× and ~11× below the defaults, which are an
   /// estimator's inflated tuning rather than the sensor's own noise. Walks and biases as default.
   static ImuNoiseModel Datasheet();
-  /// By name: "esvo2" (the defaults), "datasheet" or "perfect".
-  static Expected<ImuNoiseModel> Named(const std::string& name);
+  template <typename V>
+  void VisitFields(V&& v) {
+    v("rate_hz", rate_hz);
+    v("gyro_noise_density", gyro_noise_density);
+    v("accel_noise_density", accel_noise_density);
+    v("gyro_random_walk", gyro_random_walk);
+    v("accel_random_walk", accel_random_walk);
+    v("gyro_bias", gyro_bias);
+    v("accel_bias", accel_bias);
+  }
   Status Validate() const;
 };
 

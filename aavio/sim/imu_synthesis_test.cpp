@@ -104,17 +104,16 @@ TEST(ImuSynthesis, BiasRandomWalkGrowsLikeTheSquareRootOfTime) {
   EXPECT_NEAR(std::sqrt(sq / runs), 1e-3 * std::sqrt(20.0), 1e-3 * std::sqrt(20.0) * 0.1);
 }
 
-TEST(ImuSynthesis, NamedNoiseModels) {
-  EXPECT_DOUBLE_EQ(ImuNoiseModel::Named("esvo2")->gyro_noise_density, 0.00292);
-  const Expected<ImuNoiseModel> datasheet = ImuNoiseModel::Named("datasheet");
-  ASSERT_TRUE(datasheet.ok());
-  EXPECT_NEAR(datasheet->gyro_noise_density, 8.73e-5, 1e-7);   // 0.005 °/s/√Hz
-  EXPECT_NEAR(datasheet->accel_noise_density, 3.92e-3, 1e-5);  // 400 µg/√Hz
-  EXPECT_EQ(datasheet->gyro_bias, ImuNoiseModel().gyro_bias);
-  EXPECT_DOUBLE_EQ(ImuNoiseModel::Named("perfect")->gyro_noise_density, 0.0);
-  const Expected<ImuNoiseModel> bad = ImuNoiseModel::Named("mpu");
-  ASSERT_FALSE(bad.ok());
-  EXPECT_NE(bad.status().message().find("esvo2, datasheet or perfect"), std::string::npos);
+TEST(ImuSynthesis, DatasheetAndPerfectModels) {
+  EXPECT_DOUBLE_EQ(ImuNoiseModel().gyro_noise_density, 0.00292);
+  const ImuNoiseModel datasheet = ImuNoiseModel::Datasheet();
+  EXPECT_NEAR(datasheet.gyro_noise_density, 8.73e-5, 1e-7);   // 0.005 °/s/√Hz
+  EXPECT_NEAR(datasheet.accel_noise_density, 3.92e-3, 1e-5);  // 400 µg/√Hz
+  EXPECT_EQ(datasheet.gyro_bias, ImuNoiseModel().gyro_bias);
+  EXPECT_DOUBLE_EQ(ImuNoiseModel::Perfect().gyro_noise_density, 0.0);
+  ImuNoiseModel absurd;
+  absurd.gyro_bias[1] = 3.0;  // rad/s
+  EXPECT_FALSE(absurd.Validate().ok());
 }
 
 }  // namespace

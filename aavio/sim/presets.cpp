@@ -205,6 +205,7 @@ std::vector<SimulationPreset> AllPresets() {
   dsec.events.threshold_on = dsec.events.threshold_off = 0.3;
   dsec.events.noise_rate_hz = 0.05;
   dsec.events.hot_pixel_fraction = 1e-4;
+  dsec.camera = CameraKind::kProphesee;
   presets.push_back(dsec);
   SimulationPreset mvsec = Preset("mvsec", "MVSEC DAVIS346 stereo (upenn), hall, drone flight",
                                   SceneKind::kHall, MotionKind::kDrone, 30.0, &MvsecRig);

@@ -18,12 +18,16 @@ namespace aavio::sim {
 
 enum class SceneKind { kRoom, kStreet, kHall };
 enum class MotionKind { kHandHeld, kDriving, kDrone };
+/// The sensor family, for the realistic sensor levels (sensor_model.hpp): their refractory
+/// period, noise and readout differ.
+enum class CameraKind { kDavis, kProphesee };
 
 struct SimulationPreset {
   std::string name;
   std::string description;
   SceneKind scene = SceneKind::kRoom;
   MotionKind motion = MotionKind::kHandHeld;
+  CameraKind camera = CameraKind::kDavis;
   double duration_s = 10.0;
   double camera_height_m = 1.4;  ///< above the road (street scenes)
   EventCameraConfig events;

@@ -133,8 +133,14 @@ Expected<SimulationReport> Simulate(const SimulationRequest& request,
   std::error_code ec;
   fs::create_directories(out / "depth", ec);
   if (ec) return IoError(request.out_dir + ": cannot create the folder (" + ec.message() + ")");
-  AAVIO_RETURN_IF_ERROR(
-      io::WriteEsvoCalibration((out / "calibration").string(), rig, "aavio_" + preset.name));
+  // The calibration the odometry is given: the true rig, or the rig with the sensor's calibration
+  // errors (then the true one is kept beside it for reference).
+  AAVIO_RETURN_IF_ERROR(io::WriteEsvoCalibration((out / "calibration").string(),
+                                                 world.calibration_rig, "aavio_" + preset.name));
+  if (world.sensor.rig.PerturbsCalibration()) {
+    AAVIO_RETURN_IF_ERROR(io::WriteEsvoCalibration((out / "calibration_true").string(), rig,
+                                                   "aavio_" + preset.name + "_true"));
+  }
   AAVIO_RETURN_IF_ERROR(WriteScene((out / "scene.txt").string(), world.scene));
 
   Expected<io::SequenceFormat> format = io::ParseSequenceFormat(request.format);
@@ -197,6 +203,8 @@ Expected<SimulationReport> Simulate(const SimulationRequest& request,
   };
   if (request.preview) fs::create_directories(out / "preview");
 
+  const TimeNs right_clock_offset_ns =
+      static_cast<TimeNs>(std::llround(world.sensor.rig.right_clock_offset_us * 1e3));
   std::vector<events::Event> preview_events[2];
   const TimeNs preview_at = t_begin + (t_end - t_begin) / 2;
   TimeNs t = t_begin;
@@ -204,6 +212,9 @@ Expected<SimulationReport> Simulate(const SimulationRequest& request,
     batch[0].clear();
     batch[1].clear();
     const TimeNs t_next = simulation.Step(t_end, &batch[0], &batch[1]);
+    // The right camera's clock runs ahead of the left's by the rig's offset.
+    for (events::Event& e : batch[1])
+      e.t_ns += right_clock_offset_ns;
     for (int side = 0; side < 2; ++side)
       AAVIO_RETURN_IF_ERROR(sink.WriteEvents(side == 0, batch[side]));
     for (const events::Event& e : batch[0])
@@ -233,6 +244,10 @@ Expected<SimulationReport> Simulate(const SimulationRequest& request,
   Expected<std::vector<imu::ImuSample>> imu = SynthesizeImu(
       spline, T_imu_rect, world.motion.gravity_world, preset.imu, request.seed * 2 + 13);
   if (!imu) return imu.status();
+  const TimeNs imu_offset_ns =
+      static_cast<TimeNs>(std::llround(world.sensor.rig.imu_time_offset_ms * 1e6));
+  for (imu::ImuSample& sample : *imu)
+    sample.t_ns += imu_offset_ns;
   std::vector<geometry::StampedPose> gt;
   const TimeNs pose_step = SecondsToNs(1.0 / preset.pose_rate_hz);
   for (TimeNs tp = t_begin; tp <= t_end; tp += pose_step)
@@ -261,6 +276,9 @@ Expected<SimulationReport> Simulate(const SimulationRequest& request,
   report.imu_samples = static_cast<std::int64_t>(imu->size());
   report.noise_events =
       simulation.generator(0).noise_events() + simulation.generator(1).noise_events();
+  report.dropped_events =
+      simulation.generator(0).dropped_events() + simulation.generator(1).dropped_events();
+  report.sensor = world.sensor.name;
   report.mean_rate_ev_s =
       static_cast<double>(report.events_left) / std::max(report.duration_s, 1e-9);
   std::sort(pixel_counts.begin(), pixel_counts.end());

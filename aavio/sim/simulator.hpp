@@ -3,6 +3,7 @@
 /// sequence folder that `aavio info` and the readers understand (design.md §5):
 ///   sequence.yaml, calibration/{left,right}.yaml (ESVO style, with T_b_c),
 ///   events/{left,right}/events.h5 (or one events.bag, or events.txt), imu.txt,
+///   calibration_true/ when the sensor model gives the calibration errors,
 ///   groundtruth.txt (TUM, the rectified left camera in the world of its first pose),
 ///   depth/ (rectified-left disparity ×256 as 16-bit PNG, metric depth as 32-bit TIFF and edge
 ///   labels as PNG — 0 none, 128 edge, 255 near-horizontal edge (sim/edge_truth.hpp) — with
@@ -21,7 +22,9 @@ struct SimulationReport {
   double duration_s = 0.0;
   double wall_s = 0.0;
   std::int64_t events_left = 0, events_right = 0;
-  std::int64_t noise_events = 0;  ///< background activity and hot pixels, both cameras
+  std::int64_t noise_events = 0;    ///< background activity, leak, shot noise, hot pixels (both)
+  std::int64_t dropped_events = 0;  ///< lost in a saturated readout, both cameras
+  std::string sensor;               ///< the sensor level (and effects) simulated
   std::int64_t render_steps = 0;
   std::int64_t imu_samples = 0;
   std::int64_t depth_maps = 0;

@@ -68,10 +68,10 @@ geometry::RigidTransform SimulationWorld::T_world_camera(int side, TimeNs t_ns) 
 Expected<SimulationWorld> BuildSimulationWorld(const SimulationRequest& request) {
   Expected<SimulationPreset> preset = GetSimulationPreset(request.preset);
   if (!preset) return preset.status();
-  Expected<ImuNoiseModel> imu_noise = ImuNoiseModel::Named(request.imu_noise);
-  if (!imu_noise) return imu_noise.status();
-  imu_noise->rate_hz = preset->imu.rate_hz;  // the preset's sensor rate, the named noise
-  preset->imu = *imu_noise;
+  Expected<SensorModel> sensor = MakeSensorModel(*preset, request.sensor, request.effects);
+  if (!sensor) return sensor.status();
+  preset->events = sensor->events;
+  preset->imu = sensor->imu;
   Expected<geometry::StereoRig> rig = preset->rig();
   if (!request.calibration.empty()) {
     Expected<io::LoadedCalibration> loaded = io::LoadCalibration(request.calibration);
@@ -79,6 +79,9 @@ Expected<SimulationWorld> BuildSimulationWorld(const SimulationRequest& request)
     rig = loaded->rig;
   }
   if (!rig) return rig.status();
+  Expected<geometry::StereoRig> calibration_rig =
+      PerturbCalibration(*rig, sensor->rig, request.seed);
+  if (!calibration_rig) return calibration_rig.status();
   Expected<CameraPath> motion = BuildMotion(request, *preset);
   if (!motion) return motion.status();
   Expected<MotionSpline> spline = MotionSpline::Fit(motion->poses);
@@ -99,8 +102,9 @@ Expected<SimulationWorld> BuildSimulationWorld(const SimulationRequest& request)
       break;
   }
   if (preset->scene != SceneKind::kStreet) scene.Transform(T_world_canonical);
-  return SimulationWorld{std::move(*preset), std::move(*rig),  std::move(*motion),
-                         std::move(*spline), std::move(scene), T_world_canonical};
+  return SimulationWorld{
+      std::move(*preset), std::move(*sensor), std::move(*rig),  std::move(*calibration_rig),
+      std::move(*motion), std::move(*spline), std::move(scene), T_world_canonical};
 }
 
 }  // namespace aavio::sim

@@ -5,6 +5,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "aavio/common/status.hpp"
 #include "aavio/geometry/stereo_rig.hpp"
@@ -12,6 +13,7 @@
 #include "aavio/sim/presets.hpp"
 #include "aavio/sim/recorded_motion.hpp"
 #include "aavio/sim/scene.hpp"
+#include "aavio/sim/sensor_model.hpp"
 
 namespace aavio::sim {
 
@@ -26,12 +28,15 @@ struct SimulationRequest {
   std::string calibration;              ///< ESVO/DSEC calibration replacing the preset's
   std::string body_to_camera = "auto";  ///< identity | driving | auto (driving rule for cars)
   bool preview = false;
-  std::string imu_noise = "esvo2";  ///< esvo2 | datasheet | perfect (ImuNoiseModel::Named)
+  std::string sensor = "typical";    ///< ideal | typical | harsh | a sensor YAML file
+  std::vector<std::string> effects;  ///< only these effects of the sensor (empty: all)
 };
 
 struct SimulationWorld {
-  SimulationPreset preset;
-  geometry::StereoRig rig;
+  SimulationPreset preset;  ///< its events and imu are the sensor model's
+  SensorModel sensor;
+  geometry::StereoRig rig;              ///< the true rig: what the events follow
+  geometry::StereoRig calibration_rig;  ///< what the sequence's calibration says (with errors)
   CameraPath motion;
   MotionSpline spline;  ///< the rectified left camera in the world
   Scene scene;

@@ -20,17 +20,23 @@ struct DemoOptions {
   std::string out_dir = "aavio_demo";
   std::string preset = "rpg";
   double duration_s = 6.0;  // 0: the preset's own length
+  std::string sensor = "typical";
   bool resimulate = false;
 };
 
 int RunDemo(const DemoOptions& options, Context& ctx) {
   const auto start = std::chrono::steady_clock::now();
   const fs::path out(options.out_dir);
-  const std::string sequence = (out / "sequence").string(), run = (out / "run").string();
-  if (options.resimulate || !fs::exists(out / "sequence" / "sequence.yaml")) {
-    ctx.out << "1/2 simulating the '" << options.preset << "' preset into " << sequence << "\n";
-    std::vector<std::string> args = {"aavio", "simulate", "--preset", options.preset,
-                                     "--out", sequence,   "--quiet"};
+  // One sequence and run folder per sensor level, so that levels can be compared side by side.
+  const std::string suffix =
+      options.sensor == "typical" ? "" : "_" + fs::path(options.sensor).stem().string();
+  const std::string sequence = (out / ("sequence" + suffix)).string();
+  const std::string run = (out / ("run" + suffix)).string();
+  if (options.resimulate || !fs::exists(fs::path(sequence) / "sequence.yaml")) {
+    ctx.out << "1/2 simulating the '" << options.preset << "' preset with the " << options.sensor
+            << " sensor into " << sequence << "\n";
+    std::vector<std::string> args = {"aavio",  "simulate", "--preset",     options.preset, "--out",
+                                     sequence, "--sensor", options.sensor, "--quiet"};
     if (options.duration_s > 0.0) {
       args.push_back("--duration");
       args.push_back(StrFormat("%g", options.duration_s));
@@ -45,10 +51,11 @@ int RunDemo(const DemoOptions& options, Context& ctx) {
   if (code != kExitOk) return code;
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  ctx.out << StrFormat("demo done in %.1f s. Look at %s/stamped_traj_estimate.txt (TUM), "
-                       "summary.json, map.ply and depth/; `aavio report --run %s` draws it; the ground truth is in "
-                       "%s/groundtruth.txt and %s/depth/.\n",
-                       wall, run.c_str(), run.c_str(), sequence.c_str(), sequence.c_str());
+  ctx.out << StrFormat(
+      "demo done in %.1f s. Look at %s/stamped_traj_estimate.txt (TUM), "
+      "summary.json, map.ply and depth/; `aavio report --run %s` draws it; the ground truth is in "
+      "%s/groundtruth.txt and %s/depth/.\n",
+      wall, run.c_str(), run.c_str(), sequence.c_str(), sequence.c_str());
   return kExitOk;
 }
 
@@ -56,16 +63,20 @@ int RunDemo(const DemoOptions& options, Context& ctx) {
 
 void RegisterDemo(CLI::App& app, Context& ctx) {
   auto options = std::make_shared<DemoOptions>();
-  CLI::App* sub = app.add_subcommand(
-      "demo", "Simulate a short sequence, run the odometry, print its accuracy");
+  CLI::App* sub =
+      app.add_subcommand("demo", "Simulate a short sequence, run the odometry, print its accuracy");
   sub->add_option("--out", options->out_dir, "Output folder")->capture_default_str();
   sub->add_option("--preset", options->preset, "Simulation preset (mini, rpg, mvsec, dsec)")
       ->capture_default_str();
   sub->add_option("--duration", options->duration_s, "Seconds to simulate (0: the preset's length)")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 3600.0));
+  sub->add_option("--sensor", options->sensor,
+                  "Sensor model: ideal, typical or harsh, or a sensor YAML file")
+      ->capture_default_str();
   sub->add_flag("--resimulate", options->resimulate, "Simulate again even if the folder has data");
-  sub->callback([&ctx, options] { ctx.action = [&ctx, options] { return RunDemo(*options, ctx); }; });
+  sub->callback(
+      [&ctx, options] { ctx.action = [&ctx, options] { return RunDemo(*options, ctx); }; });
 }
 
 }  // namespace aavio::cli

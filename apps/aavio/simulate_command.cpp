@@ -2,16 +2,34 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <cmath>
 #include <ostream>
 
 #include "aavio/common/format.hpp"
+#include "aavio/io/config_yaml.hpp"
 #include "aavio/sim/presets.hpp"
+#include "aavio/sim/sensor_model.hpp"
 #include "aavio/sim/simulator.hpp"
 #include "cli.hpp"
 
 namespace aavio::cli {
 
 namespace {
+
+int PrintSensor(const sim::SimulationRequest& request, Context& ctx) {
+  Expected<sim::SimulationPreset> preset = sim::GetSimulationPreset(request.preset);
+  Expected<sim::SensorModel> sensor =
+      preset ? sim::MakeSensorModel(*preset, request.sensor, request.effects)
+             : Expected<sim::SensorModel>(preset.status());
+  if (!sensor) {
+    ctx.err << "aavio simulate: error: " << sensor.status().message() << "\n";
+    return kExitError;
+  }
+  ctx.out << io::FormatConfigYaml(FlattenConfig(*sensor),
+                                  "sensor '" + sensor->name + "' of the " + request.preset +
+                                      " preset (aavio simulate --sensor FILE reads this form)");
+  return kExitOk;
+}
 
 int RunSimulate(const sim::SimulationRequest& request, bool quiet_flag, Context& ctx) {
   // Progress only where someone watches it: on a terminal, and not with --quiet.
@@ -32,14 +50,17 @@ int RunSimulate(const sim::SimulationRequest& request, bool quiet_flag, Context&
   const sim::SimulationReport& r = *report;
   ctx.out << StrFormat(
       "simulated %.2f s (%s) in %.1f s: %lld left + %lld right events (%.3f Mev/s per camera, "
-      "%.1f %% noise), %lld render steps, %lld IMU samples, %lld depth maps\n"
+      "%.1f %% noise, %lld dropped by the readout), %lld render steps, %lld IMU samples, %lld "
+      "depth maps\n"
       "events per pixel per second (left): median %.2f, 99th percentile %.2f\n",
-      r.duration_s, request.preset.c_str(), r.wall_s, static_cast<long long>(r.events_left),
-      static_cast<long long>(r.events_right), r.mean_rate_ev_s * 1e-6,
+      r.duration_s, (request.preset + ", sensor " + r.sensor).c_str(), r.wall_s,
+      static_cast<long long>(r.events_left), static_cast<long long>(r.events_right),
+      r.mean_rate_ev_s * 1e-6,
       100.0 * static_cast<double>(r.noise_events) /
           std::max<double>(1.0, static_cast<double>(r.events_left + r.events_right)),
-      static_cast<long long>(r.render_steps), static_cast<long long>(r.imu_samples),
-      static_cast<long long>(r.depth_maps), r.pixel_rate_median_hz, r.pixel_rate_p99_hz);
+      static_cast<long long>(r.dropped_events), static_cast<long long>(r.render_steps),
+      static_cast<long long>(r.imu_samples), static_cast<long long>(r.depth_maps),
+      r.pixel_rate_median_hz, r.pixel_rate_p99_hz);
   if (!request.trajectory.empty()) ctx.out << "body to camera: " << r.body_to_camera << "\n";
   ctx.out << "wrote " << r.sequence_yaml << "\n";
   return kExitOk;
@@ -51,13 +72,14 @@ void RegisterSimulate(CLI::App& app, Context& ctx) {
   auto request = std::make_shared<sim::SimulationRequest>();
   auto quiet = std::make_shared<bool>(false);
   auto duration = std::make_shared<double>(0.0);
+  auto print_sensor = std::make_shared<bool>(false);
   std::string names;
   for (const std::string& n : sim::SimulationPresetNames())
     names += (names.empty() ? "" : ", ") + n;
   CLI::App* sub = app.add_subcommand(
       "simulate", "Simulate a stereo event camera + IMU sequence with exact ground truth");
   sub->add_option("--preset", request->preset, "Sensor, scene and motion: " + names);
-  sub->add_option("--out", request->out_dir, "Output folder (a sequence)")->required();
+  sub->add_option("--out", request->out_dir, "Output folder (a sequence)");
   sub->add_option("--format", request->format, "Event files: h5 (DSEC layout), bag or txt")
       ->check(CLI::IsMember({"h5", "bag", "txt"}));
   sub->add_option("--duration", *duration, "Seconds to simulate (default: the preset's)");
@@ -69,15 +91,34 @@ void RegisterSimulate(CLI::App& app, Context& ctx) {
   sub->add_option("--body-to-camera", request->body_to_camera,
                   "identity, driving (camera +z along travel, +y down) or auto")
       ->check(CLI::IsMember({"identity", "driving", "auto"}));
-  sub->add_option("--imu-noise", request->imu_noise,
-                  "IMU noise: esvo2 (default; ESVO2's back-end figures), datasheet (MPU-6050/6150: "
-                  "gyroscope 30x quieter) or perfect")
-      ->check(CLI::IsMember({"esvo2", "datasheet", "perfect"}));
+  std::string effect_names;
+  for (const sim::SensorEffect& e : sim::SensorEffects())
+    effect_names += (effect_names.empty() ? "" : ", ") + std::string(e.name);
+  sub->add_option("--sensor", request->sensor,
+                  "Sensor model: ideal, typical (default), harsh, or a YAML file of your sensor "
+                  "(on top of typical; --print-sensor shows the keys)");
+  sub->add_option(
+         "--effects", request->effects,
+         "Only these effects of the sensor, the rest ideal (comma-separated): " + effect_names)
+      ->delimiter(',');
+  sub->add_flag("--print-sensor", *print_sensor,
+                "Print the sensor model as YAML (for a sensor file) and exit");
   sub->add_flag("--preview", request->preview,
                 "Write preview/ PNGs (event frames, depth, top view)");
   sub->add_flag("--quiet", *quiet, "No progress output");
-  sub->callback([&ctx, request, quiet, duration] {
-    ctx.action = [&ctx, request, quiet, duration] {
+  sub->callback([&ctx, request, quiet, duration, print_sensor] {
+    ctx.action = [&ctx, request, quiet, duration, print_sensor] {
+      if (*print_sensor) return PrintSensor(*request, ctx);
+      if (request->out_dir.empty()) {
+        ctx.err << "aavio simulate: error: --out is required (the folder the sequence is written "
+                   "to)\n";
+        return static_cast<int>(kExitUsage);
+      }
+      if (*duration < 0.0 || !std::isfinite(*duration)) {
+        ctx.err << "aavio simulate: error: --duration " << *duration
+                << " must be a positive number of seconds (or left out for the preset's)\n";
+        return static_cast<int>(kExitUsage);
+      }
       if (*duration > 0.0) request->duration_s = *duration;
       return RunSimulate(*request, *quiet, ctx);
     };
