@@ -7,6 +7,7 @@
 #include "aavio/io/config_yaml.hpp"
 #include "aavio/io/dsec_h5_reader.hpp"
 #include "aavio/io/prophesee_raw.hpp"
+#include "aavio/io/ros2_bag.hpp"
 #include "aavio/io/rosbag_messages.hpp"
 #include "aavio/io/yaml_reading.hpp"
 
@@ -24,6 +25,8 @@ const char* SourceFormatName(SourceFormat format) {
       return "text";
     case SourceFormat::kPropheseeRaw:
       return "prophesee_raw";
+    case SourceFormat::kRos2Bag:
+      return "ros2_bag";
   }
   return "?";
 }
@@ -36,9 +39,10 @@ Expected<SourceFormat> DetectSourceFormat(const std::string& path) {
   if (ext == ".bag") return SourceFormat::kBag;
   if (ext == ".txt") return SourceFormat::kText;
   if (ext == ".raw") return SourceFormat::kPropheseeRaw;
+  if (ext == ".db3" || ext == ".mcap") return SourceFormat::kRos2Bag;
   return InvalidArgument(path + ": unknown data format '" + ext +
-                         "'; aavio reads DSEC-layout .h5, ROS1 .bag, text .txt and Prophesee "
-                         ".raw files");
+                         "'; aavio reads DSEC-layout .h5, ROS1 .bag, text .txt, Prophesee .raw "
+                         "and ROS 2 .db3 files");
 }
 
 namespace {
@@ -253,6 +257,11 @@ Expected<std::unique_ptr<EventStream>> OpenEventStream(const SourceSpec& spec,
     }
     case SourceFormat::kPropheseeRaw: {
       auto s = PropheseeRawEventStream::Open(spec.path, options);
+      if (!s) return s.status();
+      return std::unique_ptr<EventStream>(std::move(*s));
+    }
+    case SourceFormat::kRos2Bag: {
+      auto s = Ros2BagEventStream::Open(spec.path, spec.topic, options);
       if (!s) return s.status();
       return std::unique_ptr<EventStream>(std::move(*s));
     }

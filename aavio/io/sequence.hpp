@@ -5,7 +5,7 @@
 ///   name: box2_twin
 ///   calibration: calibration            # ESVO folder, left.yaml, or DSEC cam_to_cam.yaml
 ///   events:
-///     left: events/left/events.h5       # .h5 DSEC layout | .bag ROS1 bag | .txt text | .raw
+///     left: events/left/events.h5       # .h5 DSEC | .bag ROS1 | .txt | .raw | .db3 ROS 2
 ///     right: events/right/events.h5
 ///     left_topic: /davis/left/events    # bags only (these are the defaults)
 ///     right_topic: /davis/right/events
@@ -34,9 +34,10 @@
 
 namespace aavio::io {
 
-enum class SourceFormat { kDsecH5, kBag, kText, kPropheseeRaw };
+enum class SourceFormat { kDsecH5, kBag, kText, kPropheseeRaw, kRos2Bag };
 const char* SourceFormatName(SourceFormat format);
-/// From the file name: .h5/.hdf5 DSEC layout, .bag, .txt, .raw (Prophesee); otherwise an error.
+/// From the file name: .h5/.hdf5 DSEC layout, .bag, .txt, .raw (Prophesee), .db3 / .mcap (ROS 2
+/// bags); otherwise an error.
 Expected<SourceFormat> DetectSourceFormat(const std::string& path);
 
 struct SourceSpec {

@@ -9,6 +9,7 @@
 #include "aavio/io/bag_streams.hpp"
 #include "aavio/io/calibration.hpp"
 #include "aavio/io/dsec_h5_reader.hpp"
+#include "aavio/io/ros2_bag.hpp"
 #include "aavio/io/rosbag_messages.hpp"
 #include "aavio/io/sequence.hpp"
 #include "aavio/io/stream_stats.hpp"
@@ -150,6 +151,22 @@ Status DescribeBag(const std::string& path, bool with_stats, nlohmann::json* j, 
   return Status::Ok();
 }
 
+Status DescribeRos2Bag(const std::string& path, bool with_stats, nlohmann::json* j,
+                       std::string* text) {
+  Expected<std::vector<io::Ros2EventTopic>> topics = io::ListRos2EventTopics(path);
+  if (!topics) return topics.status();
+  (*j)["kind"] = "ros2_bag";
+  *text += "ROS 2 bag  " + path + "\n";
+  if (topics->empty()) *text += "  no event_camera_msgs/msg/EventPacket topic\n";
+  for (const io::Ros2EventTopic& t : *topics) {
+    *text += StrFormat("  %-16s %lld EventPacket messages, encoding %s\n", t.name.c_str(),
+                       static_cast<long long>(t.messages), t.encoding.c_str());
+    AAVIO_RETURN_IF_ERROR(DescribeEvents(t.name, {io::SourceFormat::kRos2Bag, path, t.name, {}}, {},
+                                         with_stats, j, text));
+  }
+  return Status::Ok();
+}
+
 Status DescribeSequenceData(const io::SequenceDescription& d, bool with_stats, nlohmann::json* j,
                             std::string* text) {
   (*j)["kind"] = "sequence";
@@ -196,18 +213,28 @@ Status DescribeSequenceData(const io::SequenceDescription& d, bool with_stats, n
   return Status::Ok();
 }
 
+/// A rosbag2 folder: metadata.yaml beside its storage files.
+bool IsRos2BagFolder(const fs::path& p) {
+  std::error_code ec;
+  return fs::is_directory(p, ec) && fs::is_regular_file(p / "metadata.yaml", ec) &&
+         !fs::is_regular_file(p / "sequence.yaml", ec);
+}
+
 }  // namespace
 
 bool LooksLikeData(const std::string& path) {
   std::error_code ec;
   const fs::path p(path);
+  if (IsRos2BagFolder(p)) return true;
   if (fs::is_directory(p, ec)) {
     return fs::is_regular_file(p / "sequence.yaml", ec) ||
            fs::is_regular_file(p / "events" / "left" / "events.h5", ec);
   }
   const std::string ext = p.extension().string();
-  if (ext == ".h5" || ext == ".hdf5" || ext == ".bag" || ext == ".txt" || ext == ".raw")
+  if (ext == ".h5" || ext == ".hdf5" || ext == ".bag" || ext == ".txt" || ext == ".raw" ||
+      ext == ".db3" || ext == ".mcap") {
     return true;
+  }
   return p.filename() == "sequence.yaml";
 }
 
@@ -216,6 +243,8 @@ Status DescribeData(const std::string& path, bool stats, nlohmann::json* j, std:
   const fs::path p(path);
   const std::string ext = p.extension().string();
   if (ext == ".bag") return DescribeBag(path, stats, j, text);
+  if (ext == ".db3" || ext == ".mcap" || IsRos2BagFolder(p))
+    return DescribeRos2Bag(path, stats, j, text);
   if (ext == ".h5" || ext == ".hdf5") {
     if (Expected<cv::Mat> map = io::ReadDsecRectifyMap(path); map.ok()) {
       (*j)["kind"] = "rectify_map";

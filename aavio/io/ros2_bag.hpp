@@ -1,0 +1,48 @@
+#pragma once
+/// ROS 2 bags (rosbag2) with sqlite3 storage — a `.db3` file, or the bag's folder (its `.db3`
+/// files in name order) — holding `event_camera_msgs/msg/EventPacket` messages, the packets the
+/// ros-event-camera drivers publish (metavision_driver, libcaer_driver), CDR little-endian:
+///   header (stamp, frame_id), uint32 height, uint32 width, uint64 seq, uint64 time_base,
+///   string encoding, bool is_bigendian, uint8[] events.
+/// Encodings `evt3` (the sensor's clock, unwrapped across packets) and `libcaer` (host time:
+/// time_base + the sensor's µs) are decoded (event_codecs.hpp); others are refused by name.
+/// MCAP storage is refused with a hint (`ros2 bag convert` writes sqlite3).
+/// The bag is read once when opened (count, time range, sensor size; every packet checked), then
+/// streamed packet by packet.
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "aavio/io/streams.hpp"
+
+namespace aavio::io {
+
+struct Ros2EventTopic {
+  std::string name;
+  std::string encoding;  ///< of its first packet
+  std::int64_t messages = 0;
+};
+
+/// The EventPacket topics of a ROS 2 bag.
+Expected<std::vector<Ros2EventTopic>> ListRos2EventTopics(const std::string& path);
+
+class Ros2BagEventStream final : public EventStream {
+ public:
+  /// `topic` empty: the bag's only EventPacket topic.
+  static Expected<std::unique_ptr<Ros2BagEventStream>> Open(const std::string& path,
+                                                            const std::string& topic,
+                                                            const StreamOptions& options);
+  ~Ros2BagEventStream() override;
+  const StreamInfo& info() const override;
+  Status ReadUntil(TimeNs t_end_ns, std::vector<events::Event>* out) override;
+  Status Seek(TimeNs t_ns) override;
+  bool AtEnd() const override;
+
+ private:
+  struct State;
+  explicit Ros2BagEventStream(std::unique_ptr<State> state);
+  std::unique_ptr<State> s_;
+};
+
+}  // namespace aavio::io
