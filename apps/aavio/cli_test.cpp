@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -469,6 +470,49 @@ TEST(Cli, EvalComparesTrajectoryFiles) {
   r = RunAavio({"eval", "--run", dir.string()});
   EXPECT_EQ(r.code, kExitError);
   EXPECT_NE(r.err.find("summary.json"), std::string::npos) << r.err;
+}
+
+TEST(Cli, SimulateTakesASensorLevelOrFileAndSaysWhatItIs) {
+  const auto dir = testing::ScratchDir();
+  const std::string seq = (dir / "seq").string();
+  Result r =
+      RunAavio({"simulate", "--preset", "mini", "--duration", "0.3", "--out", seq, "--quiet"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  EXPECT_NE(r.out.find("sensor typical"), std::string::npos) << r.out;
+  // The odometry's calibration carries the typical calibration error; the truth is kept beside.
+  EXPECT_TRUE(
+      std::filesystem::exists(std::filesystem::path(seq) / "calibration_true" / "left.yaml"));
+  r = RunAavio({"info", (std::filesystem::path(seq) / "calibration").string(), "--json"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  const nlohmann::json told = nlohmann::json::parse(r.out);
+  r = RunAavio({"info", (std::filesystem::path(seq) / "calibration_true").string(), "--json"});
+  const nlohmann::json truth = nlohmann::json::parse(r.out);
+  EXPECT_NE(told["left"]["cx"].get<double>(), truth["left"]["cx"].get<double>());
+  // --stats on the simulated events.
+  r = RunAavio({"info", "--stats",
+                (std::filesystem::path(seq) / "events" / "left" / "events.h5").string(), "--json"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  const nlohmann::json stats = nlohmann::json::parse(r.out)["events"]["stats"];
+  EXPECT_GT(stats["on_fraction"].get<double>(), 0.3);
+  EXPECT_LT(stats["on_fraction"].get<double>(), 0.6);
+  EXPECT_GT(stats["events_per_passage"].get<double>(), 1.0);
+
+  // The printed sensor is a sensor file; one effect alone; bad names and values.
+  r = RunAavio({"simulate", "--preset", "mini", "--sensor", "harsh", "--print-sensor"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  const std::string file = (dir / "harsh.yaml").string();
+  std::ofstream(file) << r.out;
+  r = RunAavio({"simulate", "--preset", "mini", "--duration", "0.2", "--out", (dir / "f").string(),
+                "--sensor", file, "--effects", "jitter,calibration", "--quiet"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  EXPECT_NE(r.out.find("harsh.yaml: jitter, calibration"), std::string::npos) << r.out;
+  r = RunAavio(
+      {"simulate", "--preset", "mini", "--out", (dir / "g").string(), "--sensor", "noisy"});
+  EXPECT_EQ(r.code, kExitError);
+  EXPECT_NE(r.err.find("use ideal, typical, harsh or a sensor YAML file"), std::string::npos);
+  r = RunAavio({"simulate", "--preset", "mini", "--out", (dir / "g").string(), "--duration", "-1"});
+  EXPECT_EQ(r.code, kExitUsage);
+  EXPECT_NE(r.err.find("--duration -1 must be a positive number"), std::string::npos) << r.err;
 }
 
 TEST(Cli, DemoSimulatesRunsAndReportsAccuracy) {

@@ -21,6 +21,7 @@ struct DemoOptions {
   std::string preset = "rpg";
   double duration_s = 6.0;  // 0: the preset's own length
   std::string sensor = "typical";
+  std::uint64_t seed = 1;
   bool resimulate = false;
 };
 
@@ -28,8 +29,9 @@ int RunDemo(const DemoOptions& options, Context& ctx) {
   const auto start = std::chrono::steady_clock::now();
   const fs::path out(options.out_dir);
   // One sequence and run folder per sensor level, so that levels can be compared side by side.
-  const std::string suffix =
+  std::string suffix =
       options.sensor == "typical" ? "" : "_" + fs::path(options.sensor).stem().string();
+  if (options.seed != 1) suffix += "_seed" + std::to_string(options.seed);
   const std::string sequence = (out / ("sequence" + suffix)).string();
   const std::string run = (out / ("run" + suffix)).string();
   if (options.resimulate || !fs::exists(fs::path(sequence) / "sequence.yaml")) {
@@ -37,6 +39,8 @@ int RunDemo(const DemoOptions& options, Context& ctx) {
             << " sensor into " << sequence << "\n";
     std::vector<std::string> args = {"aavio",  "simulate", "--preset",     options.preset, "--out",
                                      sequence, "--sensor", options.sensor, "--quiet"};
+    args.push_back("--seed");
+    args.push_back(std::to_string(options.seed));
     if (options.duration_s > 0.0) {
       args.push_back("--duration");
       args.push_back(StrFormat("%g", options.duration_s));
@@ -73,6 +77,8 @@ void RegisterDemo(CLI::App& app, Context& ctx) {
       ->check(CLI::Range(0.0, 3600.0));
   sub->add_option("--sensor", options->sensor,
                   "Sensor model: ideal, typical or harsh, or a sensor YAML file")
+      ->capture_default_str();
+  sub->add_option("--seed", options->seed, "Seed of the scene, motion and sensor noise")
       ->capture_default_str();
   sub->add_flag("--resimulate", options->resimulate, "Simulate again even if the folder has data");
   sub->callback(
