@@ -15,6 +15,7 @@ if(HDF5_IS_PARALLEL)
 endif()
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(LZ4 REQUIRED IMPORTED_TARGET liblz4)
+pkg_check_modules(ZSTD REQUIRED IMPORTED_TARGET libzstd)  # AEDAT4 files compressed with Zstandard
 find_package(BZip2 REQUIRED)
 find_package(SQLite3 REQUIRED)  # ROS 2 bags (sqlite3 storage)
 if(AAVIO_BUILD_TESTS)

@@ -25,7 +25,7 @@ done
 packages=(
   build-essential cmake pkgconf git clang-format
   libeigen3-dev libopencv-dev libyaml-cpp-dev libcli11-dev nlohmann-json3-dev libtbb-dev
-  libhdf5-dev hdf5-filter-plugin-blosc-serial hdf5-tools liblz4-dev libbz2-dev libsqlite3-dev
+  libhdf5-dev hdf5-filter-plugin-blosc-serial hdf5-tools liblz4-dev libzstd-dev libbz2-dev libsqlite3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   python3 python3-yaml python3-numpy python3-h5py python3-hdf5plugin python3-matplotlib
   python3-rosbag python3-genpy python3-genmsg

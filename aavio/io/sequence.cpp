@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <set>
 
+#include "aavio/io/aedat4.hpp"
 #include "aavio/io/config_yaml.hpp"
 #include "aavio/io/dsec_h5_reader.hpp"
 #include "aavio/io/prophesee_raw.hpp"
@@ -27,6 +28,8 @@ const char* SourceFormatName(SourceFormat format) {
       return "prophesee_raw";
     case SourceFormat::kRos2Bag:
       return "ros2_bag";
+    case SourceFormat::kAedat4:
+      return "aedat4";
   }
   return "?";
 }
@@ -40,9 +43,10 @@ Expected<SourceFormat> DetectSourceFormat(const std::string& path) {
   if (ext == ".txt") return SourceFormat::kText;
   if (ext == ".raw") return SourceFormat::kPropheseeRaw;
   if (ext == ".db3" || ext == ".mcap") return SourceFormat::kRos2Bag;
+  if (ext == ".aedat4") return SourceFormat::kAedat4;
   return InvalidArgument(path + ": unknown data format '" + ext +
-                         "'; aavio reads DSEC-layout .h5, ROS1 .bag, text .txt, Prophesee .raw "
-                         "and ROS 2 .db3 files");
+                         "'; aavio reads DSEC-layout .h5, ROS1 .bag, text .txt, Prophesee .raw, "
+                         "ROS 2 .db3 and iniVation .aedat4 files");
 }
 
 namespace {
@@ -101,7 +105,8 @@ Expected<SequenceDescription> ReadSequenceYaml(const std::string& path) {
     if (!format) return format.status().WithContext(path);
     spec->format = *format;
     spec->topic = Scalar(*events, (std::string(side) + "_topic").c_str());
-    if (spec->topic.empty()) spec->topic = std::string("/davis/") + side + "/events";
+    if (spec->topic.empty() && spec->format != SourceFormat::kAedat4)
+      spec->topic = std::string("/davis/") + side + "/events";
   }
   if (YAML::Node imu = (*root)["imu"]) {
     AAVIO_RETURN_IF_ERROR(CheckKeys(imu, {"path", "topic", "layout"}, path, "imu."));
@@ -111,7 +116,8 @@ Expected<SequenceDescription> ReadSequenceYaml(const std::string& path) {
     Expected<SourceFormat> format = DetectSourceFormat(spec.path);
     if (!format) return format.status().WithContext(path);
     if (*format == SourceFormat::kDsecH5) {
-      return InvalidArgument(path + ": imu.path: IMU data are read from .txt or .bag files");
+      return InvalidArgument(path +
+                             ": imu.path: IMU data are read from .txt, .bag or .aedat4 files");
     }
     spec.format = *format;
     spec.topic = Scalar(imu, "topic");
@@ -265,6 +271,8 @@ Expected<std::unique_ptr<EventStream>> OpenEventStream(const SourceSpec& spec,
       if (!s) return s.status();
       return std::unique_ptr<EventStream>(std::move(*s));
     }
+    case SourceFormat::kAedat4:
+      return OpenAedat4EventStream(spec.path, spec.topic, options);
   }
   return InvalidArgument(spec.path + ": unknown format");
 }
@@ -281,7 +289,9 @@ Expected<std::unique_ptr<ImuStream>> OpenImuStream(const SourceSpec& spec,
     if (!s) return s.status();
     return std::unique_ptr<ImuStream>(std::move(*s));
   }
-  return InvalidArgument(spec.path + ": IMU data are read from .txt or .bag files");
+  if (spec.format == SourceFormat::kAedat4)
+    return OpenAedat4ImuStream(spec.path, spec.topic, options);
+  return InvalidArgument(spec.path + ": IMU data are read from .txt, .bag or .aedat4 files");
 }
 
 Expected<std::unique_ptr<SequenceReader>> SequenceReader::Open(

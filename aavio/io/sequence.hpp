@@ -5,12 +5,11 @@
 ///   name: box2_twin
 ///   calibration: calibration            # ESVO folder, left.yaml, or DSEC cam_to_cam.yaml
 ///   events:
-///     left: events/left/events.h5       # .h5 DSEC | .bag ROS1 | .txt | .raw | .db3 ROS 2
-///     right: events/right/events.h5
-///     left_topic: /davis/left/events    # bags only (these are the defaults)
-///     right_topic: /davis/right/events
+///     left: events/left/events.h5       # .h5 DSEC | .bag ROS1 | .txt | .raw | .db3 ROS 2 |
+///     .aedat4 right: events/right/events.h5 left_topic: /davis/left/events    # bags (these are
+///     the defaults); .aedat4: stream id or name right_topic: /davis/right/events
 ///   imu:                                # optional
-///     path: imu.txt                     # .txt (layout: ecd | tum_vie) or .bag (topic)
+///     path: imu.txt                     # .txt (layout: ecd | tum_vie), .bag (topic) or .aedat4
 ///     topic: /davis/left/imu            # bags; empty = the only sensor_msgs/Imu topic
 ///     layout: ecd
 ///   ground_truth:                       # optional
@@ -34,16 +33,16 @@
 
 namespace aavio::io {
 
-enum class SourceFormat { kDsecH5, kBag, kText, kPropheseeRaw, kRos2Bag };
+enum class SourceFormat { kDsecH5, kBag, kText, kPropheseeRaw, kRos2Bag, kAedat4 };
 const char* SourceFormatName(SourceFormat format);
 /// From the file name: .h5/.hdf5 DSEC layout, .bag, .txt, .raw (Prophesee), .db3 / .mcap (ROS 2
-/// bags); otherwise an error.
+/// bags), .aedat4 (iniVation DV); otherwise an error.
 Expected<SourceFormat> DetectSourceFormat(const std::string& path);
 
 struct SourceSpec {
   SourceFormat format = SourceFormat::kDsecH5;
   std::string path;                                ///< absolute, or relative to the working folder
-  std::string topic;                               ///< bags
+  std::string topic;                               ///< bags; .aedat4: the stream (id or name)
   ImuTextLayout imu_layout = ImuTextLayout::kEcd;  ///< IMU text files
 };
 

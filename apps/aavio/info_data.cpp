@@ -232,7 +232,7 @@ bool LooksLikeData(const std::string& path) {
   }
   const std::string ext = p.extension().string();
   if (ext == ".h5" || ext == ".hdf5" || ext == ".bag" || ext == ".txt" || ext == ".raw" ||
-      ext == ".db3" || ext == ".mcap") {
+      ext == ".db3" || ext == ".mcap" || ext == ".aedat4") {
     return true;
   }
   return p.filename() == "sequence.yaml";
@@ -245,6 +245,15 @@ Status DescribeData(const std::string& path, bool stats, nlohmann::json* j, std:
   if (ext == ".bag") return DescribeBag(path, stats, j, text);
   if (ext == ".db3" || ext == ".mcap" || IsRos2BagFolder(p))
     return DescribeRos2Bag(path, stats, j, text);
+  if (ext == ".aedat4") {
+    (*j)["kind"] = "aedat4";
+    *text += "AEDAT4  " + path + "\n";
+    const io::SourceSpec events{io::SourceFormat::kAedat4, path, "", {}};
+    AAVIO_RETURN_IF_ERROR(DescribeEvents("events", events, {}, stats, j, text));
+    // The IMU stream, when the recording has one.
+    if (io::OpenImuStream(events, {}).ok()) AAVIO_RETURN_IF_ERROR(DescribeImu(events, {}, j, text));
+    return Status::Ok();
+  }
   if (ext == ".h5" || ext == ".hdf5") {
     if (Expected<cv::Mat> map = io::ReadDsecRectifyMap(path); map.ok()) {
       (*j)["kind"] = "rectify_map";
