@@ -33,7 +33,8 @@ Expected<std::string> FindTopicByType(const rosbag::BagFile& bag, const char* md
     return NotFound(bag.path() + ": no " + type_name + " topic; topics: " + DescribeBagTopics(bag));
   }
   std::string list;
-  for (const std::string& t : topics) list += (list.empty() ? "" : ", ") + t;
+  for (const std::string& t : topics)
+    list += (list.empty() ? "" : ", ") + t;
   return InvalidArgument(bag.path() + ": several " + type_name + " topics (" + list +
                          "); name the one to use");
 }
@@ -84,8 +85,8 @@ struct BagStreamCore {
   // Decodes one message into `out`; returns a non-ok status for a malformed message.
   std::function<Status(const rosbag::MessageView&, std::vector<T>*)> decode;
 
-  Status Init(std::unique_ptr<rosbag::BagFile> b, const std::string& t,
-              std::set<std::uint32_t> ids, const StreamOptions& o) {
+  Status Init(std::unique_ptr<rosbag::BagFile> b, const std::string& t, std::set<std::uint32_t> ids,
+              const StreamOptions& o) {
     bag = std::move(b);
     topic = t;
     connections = std::move(ids);
@@ -102,7 +103,8 @@ struct BagStreamCore {
         }
       }
     }
-    for (std::uint32_t id : connections) messages += bag->MessageCount(id);
+    for (std::uint32_t id : connections)
+      messages += bag->MessageCount(id);
     info.count = -1;
     // First and last stamps from the first and last chunk of the topic.
     if (!chunks.empty()) {
@@ -130,9 +132,10 @@ struct BagStreamCore {
     while (!reorder.CanRelease(t_end_ns) && next_chunk < chunks.size()) {
       scratch.clear();
       AAVIO_RETURN_IF_ERROR(DecodeChunk(chunks[next_chunk], &scratch));
-      const std::string where = bag->path() + ": topic " + topic + ", chunk " +
-                                std::to_string(chunks[next_chunk]);
-      for (const T& element : scratch) AAVIO_RETURN_IF_ERROR(reorder.Push(element, where));
+      const std::string where =
+          bag->path() + ": topic " + topic + ", chunk " + std::to_string(chunks[next_chunk]);
+      for (const T& element : scratch)
+        AAVIO_RETURN_IF_ERROR(reorder.Push(element, where));
       ++next_chunk;
     }
     return Status::Ok();
@@ -168,8 +171,8 @@ BagEventStream::BagEventStream(std::unique_ptr<State> s) : s_(std::move(s)) {}
 BagEventStream::~BagEventStream() = default;
 
 Expected<std::unique_ptr<BagEventStream>> BagEventStream::Open(const std::string& path,
-                                                              const std::string& topic,
-                                                              const StreamOptions& options) {
+                                                               const std::string& topic,
+                                                               const StreamOptions& options) {
   Expected<std::unique_ptr<rosbag::BagFile>> bag = rosbag::BagFile::Open(path);
   if (!bag) return bag.status();
   Expected<std::set<std::uint32_t>> ids =
@@ -190,7 +193,8 @@ Expected<std::unique_ptr<BagEventStream>> BagEventStream::Open(const std::string
       raw->info.height = static_cast<int>(header.height);
     }
     const int width = raw->options.width > 0 ? raw->options.width : static_cast<int>(header.width);
-    const int height = raw->options.width > 0 ? raw->options.height : static_cast<int>(header.height);
+    const int height =
+        raw->options.width > 0 ? raw->options.height : static_cast<int>(header.height);
     if (width > 0 && height > 0) {
       for (std::size_t i = before; i < out->size(); ++i) {
         const events::Event& e = (*out)[i];
@@ -209,20 +213,28 @@ Expected<std::unique_ptr<BagEventStream>> BagEventStream::Open(const std::string
   return std::unique_ptr<BagEventStream>(new BagEventStream(std::move(s)));
 }
 
-const StreamInfo& BagEventStream::info() const { return s_->info; }
+const StreamInfo& BagEventStream::info() const {
+  return s_->info;
+}
 Status BagEventStream::ReadUntil(TimeNs t_end_ns, std::vector<events::Event>* out) {
   return s_->ReadUntil(t_end_ns, out);
 }
-Status BagEventStream::Seek(TimeNs t_ns) { return s_->Seek(t_ns); }
-bool BagEventStream::AtEnd() const { return s_->AtEnd(); }
-std::uint64_t BagEventStream::message_count() const { return s_->messages; }
+Status BagEventStream::Seek(TimeNs t_ns) {
+  return s_->Seek(t_ns);
+}
+bool BagEventStream::AtEnd() const {
+  return s_->AtEnd();
+}
+std::uint64_t BagEventStream::message_count() const {
+  return s_->messages;
+}
 
 BagImuStream::BagImuStream(std::unique_ptr<State> s) : s_(std::move(s)) {}
 BagImuStream::~BagImuStream() = default;
 
 Expected<std::unique_ptr<BagImuStream>> BagImuStream::Open(const std::string& path,
-                                                          const std::string& topic_or_empty,
-                                                          const StreamOptions& options) {
+                                                           const std::string& topic_or_empty,
+                                                           const StreamOptions& options) {
   Expected<std::unique_ptr<rosbag::BagFile>> bag = rosbag::BagFile::Open(path);
   if (!bag) return bag.status();
   std::string topic = topic_or_empty;
@@ -251,12 +263,18 @@ Expected<std::unique_ptr<BagImuStream>> BagImuStream::Open(const std::string& pa
   return std::unique_ptr<BagImuStream>(new BagImuStream(std::move(s)));
 }
 
-const StreamInfo& BagImuStream::info() const { return s_->info; }
+const StreamInfo& BagImuStream::info() const {
+  return s_->info;
+}
 Status BagImuStream::ReadUntil(TimeNs t_end_ns, std::vector<imu::ImuSample>* out) {
   return s_->ReadUntil(t_end_ns, out);
 }
-Status BagImuStream::Seek(TimeNs t_ns) { return s_->Seek(t_ns); }
-bool BagImuStream::AtEnd() const { return s_->AtEnd(); }
+Status BagImuStream::Seek(TimeNs t_ns) {
+  return s_->Seek(t_ns);
+}
+bool BagImuStream::AtEnd() const {
+  return s_->AtEnd();
+}
 
 Expected<std::vector<geometry::StampedPose>> ReadBagPoses(const std::string& path,
                                                           const std::string& topic_or_empty) {

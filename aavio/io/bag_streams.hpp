@@ -26,8 +26,8 @@ struct BagTopics {
 class BagEventStream final : public EventStream {
  public:
   static Expected<std::unique_ptr<BagEventStream>> Open(const std::string& path,
-                                                       const std::string& topic,
-                                                       const StreamOptions& options);
+                                                        const std::string& topic,
+                                                        const StreamOptions& options);
   ~BagEventStream() override;
   const StreamInfo& info() const override;
   Status ReadUntil(TimeNs t_end_ns, std::vector<events::Event>* out) override;
@@ -46,8 +46,8 @@ class BagImuStream final : public ImuStream {
  public:
   /// `topic` empty: the bag's only sensor_msgs/Imu topic.
   static Expected<std::unique_ptr<BagImuStream>> Open(const std::string& path,
-                                                     const std::string& topic,
-                                                     const StreamOptions& options);
+                                                      const std::string& topic,
+                                                      const StreamOptions& options);
   ~BagImuStream() override;
   const StreamInfo& info() const override;
   Status ReadUntil(TimeNs t_end_ns, std::vector<imu::ImuSample>* out) override;

@@ -29,7 +29,7 @@ struct BagWriterOptions {
 class BagWriter {
  public:
   static Expected<std::unique_ptr<BagWriter>> Create(const std::string& path,
-                                                    const BagWriterOptions& options);
+                                                     const BagWriterOptions& options);
   ~BagWriter();  ///< closes; errors at this point are lost, so call Close
 
   /// Adds events of one topic (time order per topic); they are cut into packets of

@@ -110,15 +110,16 @@ Status DsecH5EventStream::State::ReadBlock() {
 
 Expected<std::int64_t> DsecH5EventStream::State::ReadT(std::uint64_t index) {
   std::int64_t t = 0;
-  AAVIO_RETURN_IF_ERROR(ReadSlab(datasets[3].get(), H5T_NATIVE_INT64, index, 1, &t, path, kFields[3]));
+  AAVIO_RETURN_IF_ERROR(
+      ReadSlab(datasets[3].get(), H5T_NATIVE_INT64, index, 1, &t, path, kFields[3]));
   return t;
 }
 
 DsecH5EventStream::DsecH5EventStream(std::unique_ptr<State> state) : s_(std::move(state)) {}
 DsecH5EventStream::~DsecH5EventStream() = default;
 
-Expected<std::unique_ptr<DsecH5EventStream>> DsecH5EventStream::Open(
-    const std::string& path, const StreamOptions& options) {
+Expected<std::unique_ptr<DsecH5EventStream>> DsecH5EventStream::Open(const std::string& path,
+                                                                     const StreamOptions& options) {
   h5::SilenceErrorPrinting();
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) return NotFound(path + ": no such file");
@@ -147,7 +148,8 @@ Expected<std::unique_ptr<DsecH5EventStream>> DsecH5EventStream::Open(
   }
   if (!missing.empty()) {
     std::string list;
-    for (const std::string& m : missing) list += (list.empty() ? "" : ", ") + m;
+    for (const std::string& m : missing)
+      list += (list.empty() ? "" : ", ") + m;
     return ParseError(path + ": not a DSEC-layout event file: missing " + list +
                       " (expected /events/x, /events/y, /events/p, /events/t)");
   }
@@ -170,8 +172,8 @@ Expected<std::unique_ptr<DsecH5EventStream>> DsecH5EventStream::Open(
     H5Sget_simple_extent_dims(space.get(), dims, nullptr);
     if (n >= 0 && static_cast<std::int64_t>(dims[0]) != n) {
       return ParseError(path + ": /events/x, y, p and t must have the same length (" +
-                        std::to_string(n) + " vs " + std::to_string(dims[0]) + " in " +
-                        kFields[i] + ")");
+                        std::to_string(n) + " vs " + std::to_string(dims[0]) + " in " + kFields[i] +
+                        ")");
     }
     n = static_cast<std::int64_t>(dims[0]);
     AAVIO_RETURN_IF_ERROR(h5::CheckFilters(s->datasets[i].get(), path, kFields[i]));
@@ -196,7 +198,8 @@ Expected<std::unique_ptr<DsecH5EventStream>> DsecH5EventStream::Open(
     const hssize_t m = H5Sget_simple_extent_npoints(space.get());
     s->ms_to_idx.resize(m > 0 ? static_cast<std::size_t>(m) : 0);
     if (h5::CheckFilters(d.get(), path, "/ms_to_idx").ok() && m > 0 &&
-        H5Dread(d.get(), H5T_NATIVE_UINT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, s->ms_to_idx.data()) >= 0) {
+        H5Dread(d.get(), H5T_NATIVE_UINT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, s->ms_to_idx.data()) >=
+            0) {
       const bool monotone = std::is_sorted(s->ms_to_idx.begin(), s->ms_to_idx.end()) &&
                             s->ms_to_idx.back() <= s->count;
       if (!monotone) {
@@ -223,9 +226,15 @@ Expected<std::unique_ptr<DsecH5EventStream>> DsecH5EventStream::Open(
   return std::unique_ptr<DsecH5EventStream>(new DsecH5EventStream(std::move(s)));
 }
 
-const StreamInfo& DsecH5EventStream::info() const { return s_->info; }
-const std::vector<std::uint64_t>& DsecH5EventStream::ms_to_idx() const { return s_->ms_to_idx; }
-std::int64_t DsecH5EventStream::t_offset_us() const { return s_->t_offset_us; }
+const StreamInfo& DsecH5EventStream::info() const {
+  return s_->info;
+}
+const std::vector<std::uint64_t>& DsecH5EventStream::ms_to_idx() const {
+  return s_->ms_to_idx;
+}
+std::int64_t DsecH5EventStream::t_offset_us() const {
+  return s_->t_offset_us;
+}
 
 Status DsecH5EventStream::ReadUntil(TimeNs t_end_ns, std::vector<events::Event>* out) {
   while (!s_->reorder.CanRelease(t_end_ns) && s_->next_index < s_->count) {

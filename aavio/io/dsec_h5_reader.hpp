@@ -15,7 +15,7 @@ namespace aavio::io {
 class DsecH5EventStream final : public EventStream {
  public:
   static Expected<std::unique_ptr<DsecH5EventStream>> Open(const std::string& path,
-                                                          const StreamOptions& options);
+                                                           const StreamOptions& options);
   ~DsecH5EventStream() override;
 
   const StreamInfo& info() const override;

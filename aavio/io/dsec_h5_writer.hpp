@@ -15,8 +15,8 @@
 namespace aavio::io {
 
 struct DsecH5WriterOptions {
-  bool compress = true;        ///< blosc/zstd/bit-shuffle; false writes uncompressed chunks
-  int compression_level = 1;   ///< blosc clevel (DSEC writers use 1)
+  bool compress = true;       ///< blosc/zstd/bit-shuffle; false writes uncompressed chunks
+  int compression_level = 1;  ///< blosc clevel (DSEC writers use 1)
   std::size_t chunk_events = 1 << 16;
   /// /t_offset [µs]; by default the first event's time, rounded down to the millisecond.
   std::optional<std::int64_t> t_offset_us;
@@ -24,8 +24,8 @@ struct DsecH5WriterOptions {
 
 class DsecH5EventWriter {
  public:
-  static Expected<std::unique_ptr<DsecH5EventWriter>> Create(const std::string& path,
-                                                            const DsecH5WriterOptions& options = {});
+  static Expected<std::unique_ptr<DsecH5EventWriter>> Create(
+      const std::string& path, const DsecH5WriterOptions& options = {});
   ~DsecH5EventWriter();  ///< closes (errors at this point are lost: call Close)
 
   /// Appends events; times must not decrease across calls.

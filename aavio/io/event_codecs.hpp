@@ -5,7 +5,13 @@
 ///   EVT 3.0   Prophesee, 16-bit words, 24-bit µs time unwrapped here;
 ///   libcaer   iniVation through libcaer_driver: 8 bytes per event, uint32 data (x bits 31..17,
 ///             y bits 16..2, polarity bit 1) and an int32 µs timestamp; t = time_base [ns] +
-///             1000 · timestamp, the 31-bit timestamp's wrap inside a packet added.
+///             1000 · timestamp, the 31-bit timestamp's wrap inside a packet added;
+///   libcaer_cmp  the same cameras, compressed by libcaer_driver into 16-bit words (defined by
+///             ros-event-camera's event_camera_codecs): code in bits 15..12 — 0 TIME_HIGH and
+///             1 TIME_LOW (12 bits each, µs since time_base, both reset at each packet), 2 ADDR_X
+///             (x, 11 bits), 3 ADDR_Y (y, polarity bit 11: one event at the last x), 4 VECT_BASE_Y
+///             (y and polarity of a vector), 5 VECT_8 (a mask of events at y, y + 1, … y + 7 of
+///             the last x; the base then moves 8 down).
 /// Events before the first EVT time word have no time and are skipped, as Metavision does.
 
 #include <cstdint>
@@ -18,7 +24,7 @@
 
 namespace aavio::io {
 
-enum class EventEncoding { kEvt2, kEvt3, kLibcaer };
+enum class EventEncoding { kEvt2, kEvt3, kLibcaer, kLibcaerCmp };
 
 class EventWordDecoder {
  public:
@@ -34,6 +40,8 @@ class EventWordDecoder {
         return 2;
       case EventEncoding::kLibcaer:
         return 8;
+      case EventEncoding::kLibcaerCmp:
+        return 2;
     }
     return 1;
   }
@@ -51,6 +59,8 @@ class EventWordDecoder {
         return DecodeEvt3(data, bytes, offset, emit);
       case EventEncoding::kLibcaer:
         return DecodeLibcaer(data, bytes, offset, emit);
+      case EventEncoding::kLibcaerCmp:
+        return DecodeLibcaerCmp(data, bytes, offset, emit);
     }
     return Status::Ok();
   }
@@ -150,6 +160,46 @@ class EventWordDecoder {
     return Status::Ok();
   }
 
+  template <typename Emit>
+  Status DecodeLibcaerCmp(const unsigned char* data, std::size_t bytes, std::int64_t offset,
+                          Emit& emit) {
+    std::uint64_t high = 0, low = 0;  // reset at each packet
+    unsigned x = 0, base_y = 0, polarity = 0;
+    for (std::size_t k = 0; k + 2 <= bytes; k += 2) {
+      const unsigned w = static_cast<unsigned>(data[k]) | (static_cast<unsigned>(data[k + 1]) << 8);
+      const unsigned code = w >> 12;
+      const std::int64_t at = offset + static_cast<std::int64_t>(k);
+      const auto t = [&] { return static_cast<TimeNs>(time_base_ns_ + (high | low) * 1000); };
+      switch (code) {
+        case 0x0:
+          high = static_cast<std::uint64_t>(w & 0xFFF) << 12;
+          break;
+        case 0x1:
+          low = w & 0xFFF;
+          break;
+        case 0x2:
+          x = w & 0x7FF;
+          break;
+        case 0x3:
+          AAVIO_RETURN_IF_ERROR(Emit1(t(), x, w & 0x7FF, (w >> 11) & 1, at, emit));
+          break;
+        case 0x4:
+          base_y = w & 0x7FF;
+          polarity = (w >> 11) & 1;
+          break;
+        case 0x5:
+          for (unsigned b = 0; b < 8; ++b) {
+            if ((w >> b) & 1) AAVIO_RETURN_IF_ERROR(Emit1(t(), x, base_y + b, polarity, at, emit));
+          }
+          base_y += 8;
+          break;
+        default:
+          return Corrupt(code, at);
+      }
+    }
+    return Status::Ok();
+  }
+
   TimeNs Evt3TimeNs() const {
     return static_cast<TimeNs>((wraps_ << 24) | (time_high_ << 12) | time_low_) * kNsPerUs;
   }
@@ -172,7 +222,9 @@ class EventWordDecoder {
         StrFormat("%s: word type 0x%X at byte %lld is not %s: a corrupt file, or "
                   "one whose header names the wrong encoding",
                   source_.c_str(), type, static_cast<long long>(at),
-                  encoding_ == EventEncoding::kEvt2 ? "EVT 2.0" : "EVT 3.0"));
+                  encoding_ == EventEncoding::kEvt2   ? "EVT 2.0"
+                  : encoding_ == EventEncoding::kEvt3 ? "EVT 3.0"
+                                                      : "libcaer_cmp"));
   }
 
   EventEncoding encoding_;

@@ -4,7 +4,9 @@
 
 namespace aavio::io::h5 {
 
-void SilenceErrorPrinting() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
+void SilenceErrorPrinting() {
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+}
 
 namespace {
 
@@ -35,9 +37,8 @@ Status CheckFilters(hid_t dataset, const std::string& file, const std::string& n
     size_t n_values = 0;
     unsigned config = 0;
     char filter_name[128] = {0};
-    const H5Z_filter_t id = H5Pget_filter2(plist.get(), static_cast<unsigned>(i), &flags,
-                                           &n_values, nullptr, sizeof(filter_name), filter_name,
-                                           &config);
+    const H5Z_filter_t id = H5Pget_filter2(plist.get(), static_cast<unsigned>(i), &flags, &n_values,
+                                           nullptr, sizeof(filter_name), filter_name, &config);
     if (id < 0) continue;
     if (H5Zfilter_avail(id) > 0) continue;
     H5Eclear2(H5E_DEFAULT);
@@ -49,7 +50,8 @@ Status CheckFilters(hid_t dataset, const std::string& file, const std::string& n
           "leave HDF5_PLUGIN_PATH unset so HDF5 finds it");
     }
     std::string hint;
-    if (id == 32015) hint = " (zstd; no Debian package provides it: recompress the file with blosc)";
+    if (id == 32015)
+      hint = " (zstd; no Debian package provides it: recompress the file with blosc)";
     if (id == 32000) hint = " (lzf: install hdf5-plugin-lzf)";
     if (id == 32004 || id == 307) hint = " (install hdf5-filter-plugin)";
     return FailedPrecondition(file + ": " + name + " needs HDF5 filter " + std::to_string(id) +

@@ -9,6 +9,7 @@
 
 #include "aavio/common/format.hpp"
 #include "aavio/io/event_codecs.hpp"
+#include "aavio/io/mcap_file.hpp"
 
 namespace aavio::io {
 
@@ -18,29 +19,20 @@ namespace fs = std::filesystem;
 
 constexpr const char* kEventPacketType = "event_camera_msgs/msg/EventPacket";
 
-/// The storage files of a bag given as a .db3 file or as its folder.
+/// The storage files of a bag given as a .db3 / .mcap file or as its folder (in name order).
 Expected<std::vector<std::string>> StorageFiles(const std::string& path) {
   std::error_code ec;
   const fs::path p(path);
   if (!fs::exists(p, ec)) return NotFound(path + ": no such file or folder");
-  if (p.extension() == ".mcap") {
-    return InvalidArgument(path +
-                           ": MCAP storage is not read yet; convert the bag to sqlite3 "
-                           "(`ros2 bag convert` with storage_id sqlite3)");
-  }
   if (!fs::is_directory(p, ec)) return std::vector<std::string>{path};
   std::vector<std::string> files;
-  bool mcap = false;
   for (const fs::directory_entry& e : fs::directory_iterator(p, ec)) {
-    if (e.path().extension() == ".db3") files.push_back(e.path().string());
-    mcap |= e.path().extension() == ".mcap";
+    if (e.path().extension() == ".db3" || e.path().extension() == ".mcap")
+      files.push_back(e.path().string());
   }
   std::sort(files.begin(), files.end());
-  if (files.empty()) {
-    return InvalidArgument(path + (mcap ? ": MCAP storage is not read yet; convert the bag to "
-                                          "sqlite3 (`ros2 bag convert` with storage_id sqlite3)"
-                                        : ": no .db3 file in this folder: not a ROS 2 bag"));
-  }
+  if (files.empty())
+    return InvalidArgument(path + ": no .db3 or .mcap file in this folder: not a ROS 2 bag");
   return files;
 }
 
@@ -121,14 +113,30 @@ Status ParseEventPacket(const unsigned char* data, std::size_t size, const std::
 Expected<EventEncoding> ParseEncoding(const std::string& encoding, const std::string& where) {
   if (encoding == "evt3") return EventEncoding::kEvt3;
   if (encoding == "libcaer") return EventEncoding::kLibcaer;
+  if (encoding == "libcaer_cmp") return EventEncoding::kLibcaerCmp;
   return InvalidArgument(where + ": event encoding '" + encoding +
-                         "' is not read (aavio reads evt3 and libcaer packets)");
+                         "' is not read (aavio reads evt3, libcaer and libcaer_cmp packets)");
 }
 
-/// One sqlite3 file of the bag.
-class Db {
+/// One storage file of the bag: its EventPacket topics, and their messages in time order.
+class Storage {
  public:
-  ~Db() {
+  virtual ~Storage() = default;
+  /// EventPacket topics: (id, name).
+  virtual Expected<std::vector<std::pair<std::int64_t, std::string>>> EventTopics() = 0;
+  virtual Status Query(std::int64_t topic_id) = 0;
+  /// The next message of the queried topic, or false at the end.
+  virtual Expected<bool> Next(const unsigned char** data, std::size_t* size,
+                              std::int64_t* bag_ns) = 0;
+  virtual std::int64_t index() const = 0;
+  virtual const std::string& path() const = 0;
+  virtual const char* kind() const = 0;
+};
+
+/// One sqlite3 file of the bag.
+class Db final : public Storage {
+ public:
+  ~Db() override {
     if (stmt_) sqlite3_finalize(stmt_);
     if (db_) sqlite3_close(db_);
   }
@@ -139,8 +147,7 @@ class Db {
     }
     return Status::Ok();
   }
-  /// EventPacket topics: (id, name).
-  Expected<std::vector<std::pair<std::int64_t, std::string>>> EventTopics() {
+  Expected<std::vector<std::pair<std::int64_t, std::string>>> EventTopics() override {
     sqlite3_stmt* q = nullptr;
     if (sqlite3_prepare_v2(db_, "SELECT id, name, type FROM topics", -1, &q, nullptr) !=
         SQLITE_OK) {
@@ -157,7 +164,7 @@ class Db {
     sqlite3_finalize(q);
     return topics;
   }
-  Status Query(std::int64_t topic_id) {
+  Status Query(std::int64_t topic_id) override {
     if (stmt_) sqlite3_finalize(stmt_);
     stmt_ = nullptr;
     if (sqlite3_prepare_v2(db_,
@@ -170,8 +177,8 @@ class Db {
     index_ = 0;
     return Status::Ok();
   }
-  /// The next message, or false at the end.
-  Expected<bool> Next(const unsigned char** data, std::size_t* size, std::int64_t* bag_ns) {
+  Expected<bool> Next(const unsigned char** data, std::size_t* size,
+                      std::int64_t* bag_ns) override {
     const int rc = sqlite3_step(stmt_);
     if (rc == SQLITE_DONE) return false;
     if (rc != SQLITE_ROW) return IoError(path_ + ": read error (" + sqlite3_errmsg(db_) + ")");
@@ -181,8 +188,9 @@ class Db {
     ++index_;
     return true;
   }
-  std::int64_t index() const { return index_; }
-  const std::string& path() const { return path_; }
+  std::int64_t index() const override { return index_; }
+  const std::string& path() const override { return path_; }
+  const char* kind() const override { return "sqlite3"; }
 
  private:
   std::string path_;
@@ -191,11 +199,62 @@ class Db {
   std::int64_t index_ = 0;
 };
 
+/// One MCAP file of the bag (ROS 2 messages in CDR).
+class McapStorage final : public Storage {
+ public:
+  explicit McapStorage(std::unique_ptr<McapReader> reader) : r_(std::move(reader)) {}
+  Expected<std::vector<std::pair<std::int64_t, std::string>>> EventTopics() override {
+    std::vector<std::pair<std::int64_t, std::string>> topics;
+    for (const McapReader::Channel& c : r_->channels())
+      if (c.schema_name == kEventPacketType && c.message_encoding == "cdr")
+        topics.emplace_back(c.id, c.topic);
+    return topics;
+  }
+  Status Query(std::int64_t topic_id) override {
+    r_->Rewind();
+    channel_ = topic_id;
+    index_ = 0;
+    return Status::Ok();
+  }
+  Expected<bool> Next(const unsigned char** data, std::size_t* size,
+                      std::int64_t* bag_ns) override {
+    McapReader::Message m;
+    while (true) {
+      Expected<bool> more = r_->Next(&m);
+      if (!more || !*more) return more;
+      if (m.channel != channel_) continue;
+      *data = m.data;
+      *size = m.size;
+      *bag_ns = static_cast<std::int64_t>(m.log_time_ns);
+      ++index_;
+      return true;
+    }
+  }
+  std::int64_t index() const override { return index_; }
+  const std::string& path() const override { return r_->path(); }
+  const char* kind() const override { return "mcap"; }
+
+ private:
+  std::unique_ptr<McapReader> r_;
+  std::int64_t channel_ = -1, index_ = 0;
+};
+
+Expected<std::unique_ptr<Storage>> OpenStorage(const std::string& file) {
+  if (fs::path(file).extension() == ".mcap") {
+    Expected<std::unique_ptr<McapReader>> r = McapReader::Open(file);
+    if (!r) return r.status();
+    return std::unique_ptr<Storage>(std::make_unique<McapStorage>(std::move(*r)));
+  }
+  auto db = std::make_unique<Db>();
+  AAVIO_RETURN_IF_ERROR(db->Open(file));
+  return std::unique_ptr<Storage>(std::move(db));
+}
+
 }  // namespace
 
 struct Ros2BagEventStream::State {
   std::string path, topic;
-  std::vector<std::unique_ptr<Db>> files;
+  std::vector<std::unique_ptr<Storage>> files;
   std::vector<std::int64_t> topic_ids;  // per file
   std::size_t file = 0;
   std::optional<EventWordDecoder> decoder;
@@ -244,8 +303,9 @@ struct Ros2BagEventStream::State {
 Expected<std::vector<Ros2EventTopic>> ListRos2EventTopics(const std::string& path) {
   Expected<std::vector<std::string>> files = StorageFiles(path);
   if (!files) return files.status();
-  Db db;
-  AAVIO_RETURN_IF_ERROR(db.Open(files->front()));
+  Expected<std::unique_ptr<Storage>> opened = OpenStorage(files->front());
+  if (!opened) return opened.status();
+  Storage& db = **opened;
   auto topics = db.EventTopics();
   if (!topics) return topics.status();
   std::vector<Ros2EventTopic> out;
@@ -281,8 +341,9 @@ Expected<std::unique_ptr<Ros2BagEventStream>> Ros2BagEventStream::Open(
   auto s = std::make_unique<State>();
   s->path = path;
   for (const std::string& f : *files) {
-    auto db = std::make_unique<Db>();
-    AAVIO_RETURN_IF_ERROR(db->Open(f));
+    Expected<std::unique_ptr<Storage>> opened = OpenStorage(f);
+    if (!opened) return opened.status();
+    std::unique_ptr<Storage> db = std::move(*opened);
     auto topics = db->EventTopics();
     if (!topics) return topics.status();
     std::string names;
@@ -341,7 +402,8 @@ Expected<std::unique_ptr<Ros2BagEventStream>> Ros2BagEventStream::Open(
   s->info.count = count;
   s->info.t_first_ns = first;
   s->info.t_last_ns = last;
-  s->info.description = "ROS 2 bag (sqlite3) EventPacket " + s->topic + ": " + path;
+  s->info.description =
+      std::string("ROS 2 bag (") + s->files[0]->kind() + ") EventPacket " + s->topic + ": " + path;
   s->reorder = ReorderBuffer<events::Event>(options.max_reorder_ns);
   AAVIO_RETURN_IF_ERROR(s->Rewind());
   return std::unique_ptr<Ros2BagEventStream>(new Ros2BagEventStream(std::move(s)));

@@ -1,12 +1,13 @@
 #pragma once
-/// ROS 2 bags (rosbag2) with sqlite3 storage — a `.db3` file, or the bag's folder (its `.db3`
-/// files in name order) — holding `event_camera_msgs/msg/EventPacket` messages, the packets the
-/// ros-event-camera drivers publish (metavision_driver, libcaer_driver), CDR little-endian:
+/// ROS 2 bags (rosbag2) with sqlite3 or MCAP storage — a `.db3` or `.mcap` file, or the bag's
+/// folder (its storage files in name order) — holding `event_camera_msgs/msg/EventPacket` messages,
+/// the packets the ros-event-camera drivers publish (metavision_driver, libcaer_driver), CDR
+/// little-endian:
 ///   header (stamp, frame_id), uint32 height, uint32 width, uint64 seq, uint64 time_base,
 ///   string encoding, bool is_bigendian, uint8[] events.
-/// Encodings `evt3` (the sensor's clock, unwrapped across packets) and `libcaer` (host time:
-/// time_base + the sensor's µs) are decoded (event_codecs.hpp); others are refused by name.
-/// MCAP storage is refused with a hint (`ros2 bag convert` writes sqlite3).
+/// Encodings `evt3` (the sensor's clock, unwrapped across packets), `libcaer` and `libcaer_cmp`
+/// (host time: time_base + the sensor's µs) are decoded (event_codecs.hpp); others are refused
+/// by name.
 /// The bag is read once when opened (count, time range, sensor size; every packet checked), then
 /// streamed packet by packet.
 

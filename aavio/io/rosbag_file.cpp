@@ -14,8 +14,8 @@ namespace {
 
 constexpr char kMagic[] = "#ROSBAG V2.0\n";
 constexpr std::size_t kMagicSize = sizeof(kMagic) - 1;
-constexpr std::uint8_t kOpMessage = 0x02, kOpBagHeader = 0x03, kOpChunk = 0x05,
-                       kOpChunkInfo = 0x06, kOpConnection = 0x07;
+constexpr std::uint8_t kOpMessage = 0x02, kOpBagHeader = 0x03, kOpChunk = 0x05, kOpChunkInfo = 0x06,
+                       kOpConnection = 0x07;
 
 std::uint32_t U32(const std::uint8_t* p) {
   std::uint32_t v;
@@ -140,8 +140,7 @@ Expected<std::unique_ptr<BagFile>> BagFile::Open(const std::string& path) {
   if (!bag->file_) return IoError(path + ": cannot open");
 
   char magic[kMagicSize] = {0};
-  if (bag->file_size_ < kMagicSize ||
-      std::fread(magic, 1, kMagicSize, bag->file_) != kMagicSize ||
+  if (bag->file_size_ < kMagicSize || std::fread(magic, 1, kMagicSize, bag->file_) != kMagicSize ||
       std::memcmp(magic, kMagic, kMagicSize) != 0) {
     if (std::memcmp(magic, "#ROSBAG V1.2", 12) == 0) {
       return ParseError(path + ": a ROS bag of format 1.2; convert it with `rosbag fix` first");
@@ -155,7 +154,8 @@ Expected<std::unique_ptr<BagFile>> BagFile::Open(const std::string& path) {
   const std::uint32_t header_len = U32(lengths);
   if (header_len > 4096) return bag->Fail("the bag header record is malformed");
   std::vector<std::uint8_t> header_bytes(header_len);
-  AAVIO_RETURN_IF_ERROR(bag->ReadAt(kMagicSize + 4, header_bytes.data(), header_len, "the bag header"));
+  AAVIO_RETURN_IF_ERROR(
+      bag->ReadAt(kMagicSize + 4, header_bytes.data(), header_len, "the bag header"));
   Header header;
   std::uint8_t op = 0;
   std::uint64_t index_pos = 0;
@@ -166,7 +166,8 @@ Expected<std::unique_ptr<BagFile>> BagFile::Open(const std::string& path) {
     return bag->Fail("the bag header record is malformed");
   }
   if (index_pos == 0) {
-    return ParseError(path + ": the bag has no index (recording not closed properly); run "
+    return ParseError(path +
+                      ": the bag has no index (recording not closed properly); run "
                       "`rosbag reindex` on it");
   }
   if (index_pos >= bag->file_size_) {
@@ -181,7 +182,8 @@ Expected<std::unique_ptr<BagFile>> BagFile::Open(const std::string& path) {
   std::size_t offset = 0;
   std::span<const std::uint8_t> rec_header, rec_data;
   while (offset < index.size()) {
-    if (!NextRecord(index, &offset, &rec_header, &rec_data)) return bag->Fail("the index is cut short");
+    if (!NextRecord(index, &offset, &rec_header, &rec_data))
+      return bag->Fail("the index is cut short");
     Header h;
     if (!h.Parse(rec_header) || !h.Op(&op)) return bag->Fail("an index record is malformed");
     if (op == kOpConnection) {
@@ -198,9 +200,10 @@ Expected<std::unique_ptr<BagFile>> BagFile::Open(const std::string& path) {
     } else if (op == kOpChunkInfo) {
       ChunkInfo info;
       std::uint32_t version = 0, count = 0;
-      if (!h.U32Field("ver", &version) || version != 1 || !h.U64Field("chunk_pos", &info.position) ||
-          !h.TimeField("start_time", &info.start_ns) || !h.TimeField("end_time", &info.end_ns) ||
-          !h.U32Field("count", &count) || rec_data.size() != 8ull * count) {
+      if (!h.U32Field("ver", &version) || version != 1 ||
+          !h.U64Field("chunk_pos", &info.position) || !h.TimeField("start_time", &info.start_ns) ||
+          !h.TimeField("end_time", &info.end_ns) || !h.U32Field("count", &count) ||
+          rec_data.size() != 8ull * count) {
         return bag->Fail("a chunk info record is malformed");
       }
       for (std::uint32_t k = 0; k < count; ++k) {
@@ -221,15 +224,18 @@ Expected<std::unique_ptr<BagFile>> BagFile::Open(const std::string& path) {
   return bag;
 }
 
-Status BagFile::ReadChunk(std::size_t index, const std::function<Status(const MessageView&)>& visit) {
+Status BagFile::ReadChunk(std::size_t index,
+                          const std::function<Status(const MessageView&)>& visit) {
   const ChunkInfo& info = chunks_.at(index);
-  const std::string where = "chunk " + std::to_string(index) + " at byte " + std::to_string(info.position);
+  const std::string where =
+      "chunk " + std::to_string(index) + " at byte " + std::to_string(info.position);
   std::uint8_t len_bytes[4];
   AAVIO_RETURN_IF_ERROR(ReadAt(info.position, len_bytes, 4, where.c_str()));
   const std::uint32_t header_len = U32(len_bytes);
   if (header_len > 1 << 16) return Fail(where + ": malformed record");
   std::vector<std::uint8_t> header_bytes(header_len + 4);
-  AAVIO_RETURN_IF_ERROR(ReadAt(info.position + 4, header_bytes.data(), header_len + 4, where.c_str()));
+  AAVIO_RETURN_IF_ERROR(
+      ReadAt(info.position + 4, header_bytes.data(), header_len + 4, where.c_str()));
   Header h;
   std::uint8_t op = 0;
   std::uint32_t size = 0;
@@ -251,9 +257,9 @@ Status BagFile::ReadChunk(std::size_t index, const std::function<Status(const Me
     AAVIO_RETURN_IF_ERROR(ReadAt(data_at, compressed_.data(), data_len, where.c_str()));
     if (compression == "bz2") {
       unsigned int out_len = size;
-      const int rc = BZ2_bzBuffToBuffDecompress(reinterpret_cast<char*>(chunk_.data()), &out_len,
-                                                reinterpret_cast<char*>(compressed_.data()),
-                                                data_len, 0, 0);
+      const int rc =
+          BZ2_bzBuffToBuffDecompress(reinterpret_cast<char*>(chunk_.data()), &out_len,
+                                     reinterpret_cast<char*>(compressed_.data()), data_len, 0, 0);
       if (rc != BZ_OK || out_len != size) return Fail(where + ": bz2 data do not decompress");
     } else if (compression == "lz4") {
       LZ4F_dctx* dctx = nullptr;
@@ -285,7 +291,8 @@ Status BagFile::ReadChunk(std::size_t index, const std::function<Status(const Me
   std::size_t offset = 0;
   std::span<const std::uint8_t> rec_header, rec_data;
   while (offset < chunk_.size()) {
-    if (!NextRecord(chunk_, &offset, &rec_header, &rec_data)) return Fail(where + ": record cut short");
+    if (!NextRecord(chunk_, &offset, &rec_header, &rec_data))
+      return Fail(where + ": record cut short");
     Header rh;
     if (!rh.Parse(rec_header) || !rh.Op(&op)) return Fail(where + ": malformed record header");
     if (op != kOpMessage) continue;  // connection records repeat the index

@@ -15,22 +15,23 @@ namespace {
 const MessageType kEventArray = {
     "dvs_msgs/EventArray", "5e8beee5a6c107e504c2e78903c224b8",
     "Header header\nuint32 height\nuint32 width\nEvent[] events\n" AAVIO_SEPARATOR AAVIO_HEADER_DEF
-    AAVIO_SEPARATOR "MSG: dvs_msgs/Event\nuint16 x\nuint16 y\ntime ts\nbool polarity\n"};
+        AAVIO_SEPARATOR "MSG: dvs_msgs/Event\nuint16 x\nuint16 y\ntime ts\nbool polarity\n"};
 
 const MessageType kImu = {
     "sensor_msgs/Imu", "6a62c6daae103f4ff57a132d6f95cec2",
     "Header header\ngeometry_msgs/Quaternion orientation\nfloat64[9] orientation_covariance\n"
     "geometry_msgs/Vector3 angular_velocity\nfloat64[9] angular_velocity_covariance\n"
-    "geometry_msgs/Vector3 linear_acceleration\nfloat64[9] linear_acceleration_covariance\n"
-    AAVIO_SEPARATOR AAVIO_HEADER_DEF AAVIO_SEPARATOR
+    "geometry_msgs/Vector3 linear_acceleration\nfloat64[9] "
+    "linear_acceleration_covariance\n" AAVIO_SEPARATOR AAVIO_HEADER_DEF AAVIO_SEPARATOR
     "MSG: geometry_msgs/Quaternion\nfloat64 x\nfloat64 y\nfloat64 z\nfloat64 w\n" AAVIO_SEPARATOR
     "MSG: geometry_msgs/Vector3\nfloat64 x\nfloat64 y\nfloat64 z\n"};
 
 const MessageType kPoseStamped = {
     "geometry_msgs/PoseStamped", "d3812c3cbc69362b77dc0b19b345f8f5",
     "Header header\ngeometry_msgs/Pose pose\n" AAVIO_SEPARATOR AAVIO_HEADER_DEF AAVIO_SEPARATOR
-    "MSG: geometry_msgs/Pose\ngeometry_msgs/Point position\ngeometry_msgs/Quaternion orientation\n"
-    AAVIO_SEPARATOR "MSG: geometry_msgs/Point\nfloat64 x\nfloat64 y\nfloat64 z\n" AAVIO_SEPARATOR
+    "MSG: geometry_msgs/Pose\ngeometry_msgs/Point position\ngeometry_msgs/Quaternion "
+    "orientation\n" AAVIO_SEPARATOR
+    "MSG: geometry_msgs/Point\nfloat64 x\nfloat64 y\nfloat64 z\n" AAVIO_SEPARATOR
     "MSG: geometry_msgs/Quaternion\nfloat64 x\nfloat64 y\nfloat64 z\nfloat64 w\n"};
 
 #undef AAVIO_SEPARATOR
@@ -177,12 +178,18 @@ void EncodeImu(const imu::ImuSample& s, std::uint32_t seq, const std::string& fr
   Writer w(out);
   w.Header(seq, s.t_ns, frame_id);
   // No orientation: by convention orientation_covariance[0] = −1 (formats.md §2.5).
-  for (double q : {0.0, 0.0, 0.0, 1.0}) w.Put(q);
-  for (int i = 0; i < 9; ++i) w.Put(i == 0 ? -1.0 : 0.0);
-  for (int i = 0; i < 3; ++i) w.Put(s.gyro_rad_s[i]);
-  for (int i = 0; i < 9; ++i) w.Put(0.0);
-  for (int i = 0; i < 3; ++i) w.Put(s.accel_m_s2[i]);
-  for (int i = 0; i < 9; ++i) w.Put(0.0);
+  for (double q : {0.0, 0.0, 0.0, 1.0})
+    w.Put(q);
+  for (int i = 0; i < 9; ++i)
+    w.Put(i == 0 ? -1.0 : 0.0);
+  for (int i = 0; i < 3; ++i)
+    w.Put(s.gyro_rad_s[i]);
+  for (int i = 0; i < 9; ++i)
+    w.Put(0.0);
+  for (int i = 0; i < 3; ++i)
+    w.Put(s.accel_m_s2[i]);
+  for (int i = 0; i < 9; ++i)
+    w.Put(0.0);
 }
 
 void EncodePoseStamped(const geometry::StampedPose& pose, std::uint32_t seq,
@@ -190,8 +197,10 @@ void EncodePoseStamped(const geometry::StampedPose& pose, std::uint32_t seq,
   Writer w(out);
   w.Header(seq, pose.t_ns, frame_id);
   const Eigen::Quaterniond q = pose.T_world_body.Quaternion();
-  for (int i = 0; i < 3; ++i) w.Put(pose.T_world_body.t[i]);
-  for (double c : {q.x(), q.y(), q.z(), q.w()}) w.Put(c);
+  for (int i = 0; i < 3; ++i)
+    w.Put(pose.T_world_body.t[i]);
+  for (double c : {q.x(), q.y(), q.z(), q.w()})
+    w.Put(c);
 }
 
 }  // namespace aavio::io::rosbag

@@ -33,7 +33,8 @@ void ReorderBuffer<T>::Release(TimeNs t_end_ns, std::vector<T>* out) {
     sorted_ = true;
   }
   std::size_t end = begin_;
-  while (end < pending_.size() && pending_[end].t_ns < t_end_ns) ++end;
+  while (end < pending_.size() && pending_[end].t_ns < t_end_ns)
+    ++end;
   out->insert(out->end(), pending_.begin() + static_cast<std::ptrdiff_t>(begin_),
               pending_.begin() + static_cast<std::ptrdiff_t>(end));
   begin_ = end;

@@ -37,7 +37,7 @@ struct StreamInfo {
   std::int64_t count = -1;  ///< elements in the stream, -1 if unknown without a full pass
   TimeNs t_first_ns = 0;    ///< valid when count != 0 (and count known or first read)
   TimeNs t_last_ns = 0;
-  int width = 0;            ///< sensor size if the file states it, else 0
+  int width = 0;  ///< sensor size if the file states it, else 0
   int height = 0;
 };
 

@@ -2,8 +2,8 @@
 
 #include <array>
 #include <charconv>
-#include <cstring>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 
 #include "aavio/common/format.hpp"
@@ -12,7 +12,9 @@ namespace aavio::io {
 
 namespace {
 
-bool IsSeparator(char c) { return c == ' ' || c == '\t' || c == ',' || c == '\r'; }
+bool IsSeparator(char c) {
+  return c == ' ' || c == '\t' || c == ',' || c == '\r';
+}
 
 /// Splits a line into at most N fields; returns the number of fields found.
 template <std::size_t N>
@@ -20,10 +22,12 @@ std::size_t SplitFields(std::string_view line, std::array<std::string_view, N>* 
   std::size_t count = 0;
   std::size_t i = 0;
   while (i < line.size()) {
-    while (i < line.size() && IsSeparator(line[i])) ++i;
+    while (i < line.size() && IsSeparator(line[i]))
+      ++i;
     if (i == line.size()) break;
     std::size_t j = i;
-    while (j < line.size() && !IsSeparator(line[j])) ++j;
+    while (j < line.size() && !IsSeparator(line[j]))
+      ++j;
     if (count < N) (*fields)[count] = line.substr(i, j - i);
     ++count;
     i = j;
@@ -102,7 +106,8 @@ class LineReader {
 
 bool IsSkipped(std::string_view line) {
   std::size_t i = 0;
-  while (i < line.size() && IsSeparator(line[i])) ++i;
+  while (i < line.size() && IsSeparator(line[i]))
+    ++i;
   return i == line.size() || line[i] == '#';
 }
 
@@ -137,9 +142,10 @@ Status ParseImuLine(std::string_view line, const std::string& where, ImuTextLayo
   std::array<std::string_view, 8> f;
   const std::size_t n = SplitFields(line, &f);
   if (n < 7) {
-    return ParseError(where + ": expected 7 columns (" +
-                      (layout == ImuTextLayout::kEcd ? "t ax ay az gx gy gz" : "t_us gx gy gz ax ay az") +
-                      "), found " + std::to_string(n));
+    return ParseError(
+        where + ": expected 7 columns (" +
+        (layout == ImuTextLayout::kEcd ? "t ax ay az gx gy gz" : "t_us gx gy gz ax ay az") +
+        "), found " + std::to_string(n));
   }
   TimeNs t_ns = 0;
   if (layout == ImuTextLayout::kEcd) {
@@ -269,7 +275,7 @@ TextEventStream::TextEventStream(std::unique_ptr<State> s) : s_(std::move(s)) {}
 TextEventStream::~TextEventStream() = default;
 
 Expected<std::unique_ptr<TextEventStream>> TextEventStream::Open(const std::string& path,
-                                                                const StreamOptions& options) {
+                                                                 const StreamOptions& options) {
   auto s = std::make_unique<State>();
   AAVIO_RETURN_IF_ERROR(s->lines.Open(path));
   s->parse.options = options;
@@ -279,19 +285,25 @@ Expected<std::unique_ptr<TextEventStream>> TextEventStream::Open(const std::stri
   return std::unique_ptr<TextEventStream>(new TextEventStream(std::move(s)));
 }
 
-const StreamInfo& TextEventStream::info() const { return s_->info; }
+const StreamInfo& TextEventStream::info() const {
+  return s_->info;
+}
 Status TextEventStream::ReadUntil(TimeNs t_end_ns, std::vector<events::Event>* out) {
   return s_->ReadUntil(t_end_ns, out);
 }
-Status TextEventStream::Seek(TimeNs t_ns) { return s_->Seek(t_ns); }
-bool TextEventStream::AtEnd() const { return s_->exhausted && s_->reorder.size() == 0; }
+Status TextEventStream::Seek(TimeNs t_ns) {
+  return s_->Seek(t_ns);
+}
+bool TextEventStream::AtEnd() const {
+  return s_->exhausted && s_->reorder.size() == 0;
+}
 
 TextImuStream::TextImuStream(std::unique_ptr<State> s) : s_(std::move(s)) {}
 TextImuStream::~TextImuStream() = default;
 
 Expected<std::unique_ptr<TextImuStream>> TextImuStream::Open(const std::string& path,
-                                                            ImuTextLayout layout,
-                                                            const StreamOptions& options) {
+                                                             ImuTextLayout layout,
+                                                             const StreamOptions& options) {
   auto s = std::make_unique<State>();
   AAVIO_RETURN_IF_ERROR(s->lines.Open(path));
   s->parse.layout = layout;
@@ -301,12 +313,18 @@ Expected<std::unique_ptr<TextImuStream>> TextImuStream::Open(const std::string& 
   return std::unique_ptr<TextImuStream>(new TextImuStream(std::move(s)));
 }
 
-const StreamInfo& TextImuStream::info() const { return s_->info; }
+const StreamInfo& TextImuStream::info() const {
+  return s_->info;
+}
 Status TextImuStream::ReadUntil(TimeNs t_end_ns, std::vector<imu::ImuSample>* out) {
   return s_->ReadUntil(t_end_ns, out);
 }
-Status TextImuStream::Seek(TimeNs t_ns) { return s_->Seek(t_ns); }
-bool TextImuStream::AtEnd() const { return s_->exhausted && s_->reorder.size() == 0; }
+Status TextImuStream::Seek(TimeNs t_ns) {
+  return s_->Seek(t_ns);
+}
+bool TextImuStream::AtEnd() const {
+  return s_->exhausted && s_->reorder.size() == 0;
+}
 
 Expected<std::unique_ptr<TextEventWriter>> TextEventWriter::Create(const std::string& path) {
   std::FILE* file = std::fopen(path.c_str(), "wb");
@@ -315,7 +333,9 @@ Expected<std::unique_ptr<TextEventWriter>> TextEventWriter::Create(const std::st
   return std::unique_ptr<TextEventWriter>(new TextEventWriter(path, file));
 }
 
-TextEventWriter::~TextEventWriter() { (void)Close(); }
+TextEventWriter::~TextEventWriter() {
+  (void)Close();
+}
 
 Status TextEventWriter::Write(std::span<const events::Event> events) {
   if (!file_) return FailedPrecondition(path_ + ": writer already closed");

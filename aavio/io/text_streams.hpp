@@ -24,7 +24,7 @@ enum class ImuTextLayout {
 class TextEventStream final : public EventStream {
  public:
   static Expected<std::unique_ptr<TextEventStream>> Open(const std::string& path,
-                                                        const StreamOptions& options);
+                                                         const StreamOptions& options);
   ~TextEventStream() override;
   const StreamInfo& info() const override;
   Status ReadUntil(TimeNs t_end_ns, std::vector<events::Event>* out) override;
@@ -40,8 +40,8 @@ class TextEventStream final : public EventStream {
 class TextImuStream final : public ImuStream {
  public:
   static Expected<std::unique_ptr<TextImuStream>> Open(const std::string& path,
-                                                      ImuTextLayout layout,
-                                                      const StreamOptions& options);
+                                                       ImuTextLayout layout,
+                                                       const StreamOptions& options);
   ~TextImuStream() override;
   const StreamInfo& info() const override;
   Status ReadUntil(TimeNs t_end_ns, std::vector<imu::ImuSample>* out) override;
