@@ -1,8 +1,5 @@
 #include "aavio/io/aedat4.hpp"
 
-#include <lz4frame.h>
-#include <zstd.h>
-
 #include <cctype>
 #include <cmath>
 #include <cstdint>
@@ -14,6 +11,7 @@
 #include <vector>
 
 #include "aavio/common/format.hpp"
+#include "aavio/io/decompression.hpp"
 
 namespace aavio::io {
 
@@ -247,11 +245,13 @@ struct Aedat4File {
         break;
       case Compression::kLz4:
       case Compression::kLz4High:
-        AAVIO_RETURN_IF_ERROR(DecompressLz4(p.offset));
+        if (Status s = DecompressLz4Frame(compressed, 0, &buffer); !s.ok())
+          return Fail(p.offset, s.message());
         break;
       case Compression::kZstd:
       case Compression::kZstdHigh:
-        AAVIO_RETURN_IF_ERROR(DecompressZstd(p.offset));
+        if (Status s = DecompressZstd(compressed, 0, &buffer); !s.ok())
+          return Fail(p.offset, s.message());
         break;
     }
     std::uint32_t prefix = 0;
@@ -261,54 +261,6 @@ struct Aedat4File {
       return Fail(p.offset, StrFormat("packet holds %zu bytes, its flatbuffer says %u",
                                       buffer.size() - 4, prefix));
     }
-    return Status::Ok();
-  }
-
-  Status DecompressLz4(std::int64_t offset) {
-    LZ4F_dctx* dctx = nullptr;
-    if (LZ4F_isError(LZ4F_createDecompressionContext(&dctx, LZ4F_VERSION)))
-      return IoError(path + ": cannot create an LZ4 decompression context");
-    buffer.resize(std::max<std::size_t>(buffer.capacity(), 4 * compressed.size() + 1024));
-    std::size_t in_at = 0, out_at = 0, hint = 1;
-    while (in_at < compressed.size() && hint != 0) {
-      if (buffer.size() - out_at < 65536) buffer.resize(buffer.size() * 2);
-      std::size_t out_size = buffer.size() - out_at, in_size = compressed.size() - in_at;
-      hint = LZ4F_decompress(dctx, buffer.data() + out_at, &out_size, compressed.data() + in_at,
-                             &in_size, nullptr);
-      if (LZ4F_isError(hint)) {
-        LZ4F_freeDecompressionContext(dctx);
-        return Fail(offset, std::string("corrupt LZ4 data: ") + LZ4F_getErrorName(hint));
-      }
-      in_at += in_size;
-      out_at += out_size;
-      if (in_size == 0 && out_size == 0) break;
-    }
-    LZ4F_freeDecompressionContext(dctx);
-    if (hint != 0) return Fail(offset, "LZ4 frame ends early (truncated packet)");
-    buffer.resize(out_at);
-    return Status::Ok();
-  }
-
-  Status DecompressZstd(std::int64_t offset) {
-    ZSTD_DStream* z = ZSTD_createDStream();
-    ZSTD_initDStream(z);
-    buffer.resize(std::max<std::size_t>(buffer.capacity(), 4 * compressed.size() + 1024));
-    ZSTD_inBuffer in{compressed.data(), compressed.size(), 0};
-    std::size_t out_at = 0, left = 1;
-    while (left != 0) {
-      if (buffer.size() - out_at < 65536) buffer.resize(buffer.size() * 2);
-      ZSTD_outBuffer out{buffer.data() + out_at, buffer.size() - out_at, 0};
-      left = ZSTD_decompressStream(z, &out, &in);
-      if (ZSTD_isError(left)) {
-        ZSTD_freeDStream(z);
-        return Fail(offset, std::string("corrupt Zstandard data: ") + ZSTD_getErrorName(left));
-      }
-      out_at += out.pos;
-      if (in.pos == in.size && out.pos == 0 && left != 0) break;
-    }
-    ZSTD_freeDStream(z);
-    if (left != 0) return Fail(offset, "Zstandard frame ends early (truncated packet)");
-    buffer.resize(out_at);
     return Status::Ok();
   }
 };

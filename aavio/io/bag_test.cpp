@@ -100,7 +100,7 @@ TEST(Bag, BrokenBagsGiveClearErrors) {
       {"not_a_bag.bag", "a ROS bag of format 1.2"},
       {"events.txt", "not a ROS1 bag"},
       {"bag_corrupt.bag", "chunk 0 at byte 4117: record cut short"},
-      {"bag_corrupt_lz4.bag", "lz4 data do not decompress"},
+      {"bag_corrupt_lz4.bag", "chunk 0 at byte 4117: corrupt LZ4 data"},
   };
   for (const Case& c : cases) {
     auto stream = BagEventStream::Open(Fixture(c.file), "/davis/left/events", {});

@@ -1,12 +1,10 @@
 #include "aavio/io/mcap_file.hpp"
 
-#include <lz4frame.h>
-#include <zstd.h>
-
 #include <algorithm>
 #include <cstring>
 
 #include "aavio/common/format.hpp"
+#include "aavio/io/decompression.hpp"
 
 namespace aavio::io {
 
@@ -148,22 +146,11 @@ Status McapReader::ReadChunk(std::int64_t at, std::uint64_t length) {
   if (compression.empty()) {
     if (records != size) return Fail(at, "an uncompressed chunk whose sizes disagree");
     std::memcpy(chunk_.data(), f.here(), static_cast<std::size_t>(size));
-  } else if (compression == "lz4") {
-    LZ4F_dctx* dctx = nullptr;
-    if (LZ4F_isError(LZ4F_createDecompressionContext(&dctx, LZ4F_VERSION)))
-      return IoError(path_ + ": cannot create an LZ4 decompression context");
-    std::size_t out = chunk_.size(), in = static_cast<std::size_t>(records);
-    const std::size_t rc = LZ4F_decompress(dctx, chunk_.data(), &out, f.here(), &in, nullptr);
-    LZ4F_freeDecompressionContext(dctx);
-    if (LZ4F_isError(rc))
-      return Fail(at, std::string("corrupt lz4 chunk: ") + LZ4F_getErrorName(rc));
-    if (out != chunk_.size() || rc != 0) return Fail(at, "the lz4 chunk is shorter than it says");
-  } else if (compression == "zstd") {
-    const std::size_t out =
-        ZSTD_decompress(chunk_.data(), chunk_.size(), f.here(), static_cast<std::size_t>(records));
-    if (ZSTD_isError(out))
-      return Fail(at, std::string("corrupt zstd chunk: ") + ZSTD_getErrorName(out));
-    if (out != chunk_.size()) return Fail(at, "the zstd chunk is shorter than it says");
+  } else if (compression == "lz4" || compression == "zstd") {
+    const std::span<const unsigned char> packed(f.here(), static_cast<std::size_t>(records));
+    const Status s = compression == "lz4" ? DecompressLz4Frame(packed, chunk_.size(), &chunk_)
+                                          : DecompressZstd(packed, chunk_.size(), &chunk_);
+    if (!s.ok()) return Fail(at, compression + " chunk: " + s.message());
   } else {
     return Fail(at, "chunk compression '" + compression + "' is not read (lz4, zstd or none)");
   }

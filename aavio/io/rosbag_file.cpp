@@ -1,12 +1,13 @@
 #include "aavio/io/rosbag_file.hpp"
 
 #include <bzlib.h>
-#include <lz4frame.h>
 
 #include <algorithm>
 #include <cstring>
 #include <filesystem>
 #include <string_view>
+
+#include "aavio/io/decompression.hpp"
 
 namespace aavio::io::rosbag {
 
@@ -262,26 +263,8 @@ Status BagFile::ReadChunk(std::size_t index,
                                      reinterpret_cast<char*>(compressed_.data()), data_len, 0, 0);
       if (rc != BZ_OK || out_len != size) return Fail(where + ": bz2 data do not decompress");
     } else if (compression == "lz4") {
-      LZ4F_dctx* dctx = nullptr;
-      if (LZ4F_isError(LZ4F_createDecompressionContext(&dctx, LZ4F_VERSION))) {
-        return IoError(path_ + ": cannot create an LZ4 context");
-      }
-      std::size_t out_at = 0, in_at = 0;
-      std::size_t rc = 1;
-      while (rc != 0 && in_at < data_len && out_at <= size) {
-        std::size_t out_n = size - out_at;
-        std::size_t in_n = data_len - in_at;
-        rc = LZ4F_decompress(dctx, chunk_.data() + out_at, &out_n, compressed_.data() + in_at,
-                             &in_n, nullptr);
-        if (LZ4F_isError(rc)) break;
-        out_at += out_n;
-        in_at += in_n;
-        if (out_n == 0 && in_n == 0) break;
-      }
-      LZ4F_freeDecompressionContext(dctx);
-      if (LZ4F_isError(rc) || rc != 0 || out_at != size) {
-        return Fail(where + ": lz4 data do not decompress");
-      }
+      if (Status s = DecompressLz4Frame(compressed_, size, &chunk_); !s.ok())
+        return Fail(where + ": " + s.message());
     } else {
       return ParseError(path_ + ": " + where + " uses compression '" + compression +
                         "'; aavio reads none, bz2 and lz4");
