@@ -104,6 +104,41 @@ void Registration::Linearize(const RegistrationImages& images,
   }
 }
 
+double Registration::Alignment(const RegistrationImages& images,
+                               const geometry::RigidTransform& T_ref_cur) const {
+  const double delta = config_.huber_threshold;
+  auto huber = [delta](double r) { return r <= delta ? r * r : delta * r; };
+  const Eigen::Matrix3d Rt = T_ref_cur.R.transpose();
+  double points_sum = 0.0;
+  int points = 0;
+  for (const Eigen::Vector3d& p : points_) {
+    const Eigen::Vector3d q = Rt * (p - T_ref_cur.t);
+    if (q.z() <= 1e-6) continue;
+    const double u = camera_.f * q.x() / q.z() + camera_.cx,
+                 v = camera_.f * q.y() / q.z() + camera_.cy;
+    if (u < 0.0 || v < 0.0 || u >= camera_.width - 1.0 || v >= camera_.height - 1.0 ||
+        images.valid_mask.at<std::uint8_t>(static_cast<int>(v + 0.5), static_cast<int>(u + 0.5)) <=
+            125)
+      continue;
+    points_sum += huber(Bilinear<std::uint8_t>(images.negative_ts, WeightsAt(u, v)));
+    ++points;
+  }
+  // The image: every 4th pixel of every 4th row inside the mask.
+  double image_sum = 0.0;
+  int pixels = 0;
+  for (int y = 0; y < images.negative_ts.rows; y += 4) {
+    const std::uint8_t* ts = images.negative_ts.ptr<std::uint8_t>(y);
+    const std::uint8_t* mask = images.valid_mask.ptr<std::uint8_t>(y);
+    for (int x = 0; x < images.negative_ts.cols; x += 4) {
+      if (mask[x] <= 125) continue;
+      image_sum += huber(ts[x]);
+      ++pixels;
+    }
+  }
+  if (points == 0 || pixels == 0 || image_sum <= 0.0) return 1.0;
+  return (points_sum / points) / (image_sum / pixels);
+}
+
 RegistrationResult Registration::Solve(
     const RegistrationImages& images, const geometry::RigidTransform& T_ref_cur_init,
     const std::optional<Eigen::Matrix3d>& R_ref_cur_prior) const {
@@ -209,6 +244,7 @@ RegistrationResult Registration::Solve(
     }
   }
   result.final_cost = mean_cost(result.T_ref_cur, nullptr);
+  result.alignment = Alignment(images, result.T_ref_cur);
   return result;
 }
 

@@ -38,6 +38,9 @@ struct RegistrationResult {
   int iterations = 0;
   double initial_cost = 0.0, final_cost = 0.0;  ///< mean robust cost per point
   double valid_fraction = 0.0;  ///< share of points landing inside the image and mask
+  /// At the final pose: the mean cost of the points that land inside, over the mean cost of the
+  /// image's usable pixels — how much better the map fits here than anywhere (1: no better).
+  double alignment = 1.0;
 };
 
 class Registration {
@@ -64,6 +67,8 @@ class Registration {
   const std::vector<Eigen::Vector3d>& points() const { return points_; }  ///< the chosen subset
 
  private:
+  double Alignment(const RegistrationImages& images,
+                   const geometry::RigidTransform& T_ref_cur) const;
   std::vector<Eigen::Vector3d> points_;  // the chosen subset, reference frame
   Camera camera_;
   TrackingConfig config_;

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <numeric>
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
@@ -118,10 +119,31 @@ TEST(Registration, ConvergesFromTwoDegreesAndFiveCentimetres) {
     }
     EXPECT_GE(converged, trials * 99 / 100)
         << "batch " << batch_size << ", worst angle " << worst_angle << "°";
-    std::printf("registration from ±2° / ±5 cm, batches of %d, %d iterations + %d on all: %d of "
-                "%d trials within 0.2° and 1 cm\n",
-                batch_size, iterations, polish, converged, trials);
+    std::printf(
+        "registration from ±2° / ±5 cm, batches of %d, %d iterations + %d on all: %d of "
+        "%d trials within 0.2° and 1 cm\n",
+        batch_size, iterations, polish, converged, trials);
   }
+}
+
+// Alignment: at the true pose the map sits on the dark edges, far below the image's mean cost;
+// on a time surface of the same darkness at random places (noise), no better than anywhere.
+TEST(Registration, AlignmentSaysWhetherTheMapFitsBetterThanAnywhere) {
+  const PosedEdgeScene scene;
+  TrackingConfig config;
+  const Registration reg(scene.map, kCamera, config, 1);
+  const RegistrationResult aligned = reg.Solve(scene.Input(), scene.truth);
+  EXPECT_LT(aligned.alignment, 0.3);
+  // The same image with its pixels shuffled: the same histogram, no structure.
+  cv::Mat flat = scene.images.negative.reshape(1, 1).clone();
+  std::mt19937 rng(5);
+  std::shuffle(flat.begin<std::uint8_t>(), flat.end<std::uint8_t>(), rng);
+  Images noise = scene.images;
+  noise.negative = flat.reshape(1, kCamera.height);
+  const RegistrationResult lost =
+      reg.Solve({noise.negative, noise.du, noise.dv, noise.valid}, scene.truth);
+  EXPECT_GT(lost.alignment, 0.9);
+  EXPECT_LT(lost.alignment, 1.1);
 }
 
 // The gyroscope's rotation as a soft prior: weight 0 leaves the data alone, a heavy weight holds

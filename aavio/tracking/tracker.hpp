@@ -23,9 +23,10 @@ enum class TrackingStatus { kOk, kNoMap, kLost };
 /// Why a tick was declared lost (the first test that failed, in this order).
 enum class LostReason {
   kNone,
-  kFewValid,     ///< under 30 % of the residuals inside the image and mask
-  kCostGrew,     ///< the registration ended 50 % above its starting cost
-  kRotationJump,  ///< corrected the prediction by more than max_correction_deg
+  kFewValid,         ///< under 30 % of the residuals inside the image and mask
+  kNotAligned,       ///< the map fits the time surface no better than anywhere (noise, blackout)
+  kCostGrew,         ///< the registration ended 50 % above its starting cost
+  kRotationJump,     ///< corrected the prediction by more than max_correction_deg
   kTranslationJump,  ///< ... or by more than max_correction_m
 };
 const char* LostReasonName(LostReason reason);
@@ -47,7 +48,8 @@ struct TrackingResult {
 };
 
 /// The predicted pose: rotation R_prev·ΔR_cam from the gyroscope if given, else constant angular
-/// velocity; translation t_prev + v with v the given velocity per tick, or else t_prev − t_prevprev.
+/// velocity; translation t_prev + v with v the given velocity per tick, or else t_prev −
+/// t_prevprev.
 geometry::RigidTransform PredictPose(
     const geometry::RigidTransform& T_world_prev,
     const std::optional<geometry::RigidTransform>& T_world_prevprev,
@@ -82,7 +84,7 @@ class Tracker {
   geometry::RigidTransform T_prev_;
   std::optional<geometry::RigidTransform> T_prevprev_;
   Eigen::Vector3d velocity_ = Eigen::Vector3d::Zero();  // smoothed translation per tick
-  bool prev_tracked_ = false;  // the previous pose came from registration
+  bool prev_tracked_ = false;                           // the previous pose came from registration
   std::int64_t ticks_ = 0;
 };
 
