@@ -162,7 +162,8 @@ void RegisterInfo(CLI::App& app, Context& ctx) {
   CLI::App* sub = app.add_subcommand(
       "info",
       "Describe a calibration (a folder with left.yaml + right.yaml, either file, or a DSEC "
-      "cam_to_cam.yaml), an event file (.h5, .bag, .txt, Prophesee .raw) or a sequence");
+      "cam_to_cam.yaml), an event file (.h5, .txt, Prophesee .raw, iniVation .aedat4), a ROS1 or "
+      "ROS 2 bag (.bag, .db3, .mcap) or a sequence");
   sub->add_option("path", options->path, "File or folder to describe")->required();
   sub->add_flag("--json", options->json, "Print JSON for scripts");
   sub->add_flag("--stats", options->stats,
