@@ -1,11 +1,13 @@
 #include "aavio/io/aedat4.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <limits>
 #include <numbers>
 #include <string_view>
 #include <vector>
@@ -265,14 +267,25 @@ struct Aedat4File {
   }
 };
 
+/// The elements vector (field 0 of the root table) of the loaded packet: its first element and
+/// length (0 for an empty packet).
+Status Elements(const Aedat4File& f, const FlatBuffer& fb, std::int64_t where,
+                std::size_t element_size, std::size_t* first, std::size_t* n) {
+  std::size_t root = 0, field = 0;
+  *n = 0;
+  if (!fb.Root(&root)) return f.Fail(where, "packet without a root table");
+  if (!fb.Field(root, 0, &field)) return Status::Ok();
+  if (!fb.Vector(field, element_size, first, n))
+    return f.Fail(where, "element vector out of bounds");
+  return Status::Ok();
+}
+
 /// The elements of the loaded packet `packet` (index into file->packets), in file order.
 Status DecodeEvents(const Aedat4File& f, std::size_t packet, std::vector<events::Event>* out) {
   const std::int64_t where = f.packets[packet].offset;
   const FlatBuffer fb(f.buffer.data() + 4, f.buffer.size() - 4);
-  std::size_t root = 0, field = 0, first = 0, n = 0;
-  if (!fb.Root(&root)) return f.Fail(where, "event packet without a root table");
-  if (!fb.Field(root, 0, &field)) return Status::Ok();  // an empty packet
-  if (!fb.Vector(field, 16, &first, &n)) return f.Fail(where, "event vector out of bounds");
+  std::size_t first = 0, n = 0;
+  AAVIO_RETURN_IF_ERROR(Elements(f, fb, where, 16, &first, &n));
   for (std::size_t i = 0; i < n; ++i) {
     std::int64_t t_us = 0;
     std::int16_t x = 0, y = 0;
@@ -303,10 +316,8 @@ Status DecodeEvents(const Aedat4File& f, std::size_t packet, std::vector<events:
 Status DecodeImu(const Aedat4File& f, std::size_t packet, std::vector<imu::ImuSample>* out) {
   const std::int64_t where = f.packets[packet].offset;
   const FlatBuffer fb(f.buffer.data() + 4, f.buffer.size() - 4);
-  std::size_t root = 0, field = 0, first = 0, n = 0;
-  if (!fb.Root(&root)) return f.Fail(where, "IMU packet without a root table");
-  if (!fb.Field(root, 0, &field)) return Status::Ok();
-  if (!fb.Vector(field, 4, &first, &n)) return f.Fail(where, "IMU vector out of bounds");
+  std::size_t first = 0, n = 0;
+  AAVIO_RETURN_IF_ERROR(Elements(f, fb, where, 4, &first, &n));
   for (std::size_t i = 0; i < n; ++i) {
     std::size_t table = 0;
     if (!fb.TableAt(first, i, &table))
@@ -346,7 +357,8 @@ class Aedat4Stream final : public Stream<T> {
         "AEDAT4 " + type + " stream " + std::to_string(s->f_.stream.id) + ": " + path;
     s->info_.width = s->f_.stream.width;
     s->info_.height = s->f_.stream.height;
-    // One full pass: count, time range, and every packet decoded once.
+    // One full pass: count, time range, every packet decoded once, and the latest time up to
+    // each packet (for Seek).
     std::int64_t count = 0;
     std::vector<T> elements;
     for (std::size_t i = 0; i < s->f_.packets.size(); ++i) {
@@ -358,6 +370,7 @@ class Aedat4Stream final : public Stream<T> {
         if (count == 0 || e.t_ns > s->info_.t_last_ns) s->info_.t_last_ns = e.t_ns;
         ++count;
       }
+      s->latest_ns_.push_back(count > 0 ? s->info_.t_last_ns : std::numeric_limits<TimeNs>::min());
     }
     s->info_.count = count;
     return std::unique_ptr<Stream<T>>(std::move(s));
@@ -384,7 +397,9 @@ class Aedat4Stream final : public Stream<T> {
   }
 
   Status Seek(TimeNs t_ns) override {
-    next_ = 0;
+    // Packets whose every element, and every earlier one, is before t_ns are not read again.
+    next_ = static_cast<std::size_t>(std::lower_bound(latest_ns_.begin(), latest_ns_.end(), t_ns) -
+                                     latest_ns_.begin());
     reorder_.Reset(t_ns);
     return Status::Ok();
   }
@@ -400,6 +415,7 @@ class Aedat4Stream final : public Stream<T> {
   Decoder<T> decode_;
   ReorderBuffer<T> reorder_;
   std::size_t next_ = 0;
+  std::vector<TimeNs> latest_ns_;  // the latest element time up to each packet (non-decreasing)
   std::vector<T> block_;
 };
 

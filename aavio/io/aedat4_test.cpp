@@ -228,6 +228,11 @@ TEST(Aedat4, ZstandardAndUncompressedFilesAndSeek) {
     const std::vector<events::Event> rest = ReadAll(**s);
     ASSERT_EQ(rest.size(), 10u);
     EXPECT_EQ(rest.front().t_ns, 2090 * 1000);
+    // Back into the first packet, and before the start.
+    ASSERT_TRUE((*s)->Seek(1050 * 1000).ok());
+    EXPECT_EQ(ReadAll(**s).size(), 150u);
+    ASSERT_TRUE((*s)->Seek(0).ok());
+    EXPECT_EQ(ReadAll(**s).size(), 200u);
   }
 }
 
