@@ -87,7 +87,7 @@ void BM_TimeSurface(benchmark::State& state) {
     begin = end;
     ts->Render(tick, 30.0, &raw);
     rectifier.RectifyPadded(padded, &rectified);
-    events::MedianFilterTs(rectified, 1, &rectified);
+    events::MedianFilterTs(rectified, &rectified);
     benchmark::DoNotOptimize(rectified.data);
   }
   state.counters["events_per_tick"] =
@@ -101,9 +101,8 @@ void BM_NegativeTsAndGradients(benchmark::State& state) {
   (void)ts.Insert(std::span(w.left).subspan(0, After(w.left, 5 * kTick)));
   cv::Mat raw, negative, du, dv;
   ts.Render(5 * kTick, 30.0, &raw);
-  const events::TimeSurfaceConfig config;
   for (auto _ : state) {
-    events::NegativeTs(raw, config, &negative);
+    events::NegativeTs(raw, &negative);
     events::SobelGradients(negative, &du, &dv);
     benchmark::DoNotOptimize(dv.data);
   }
@@ -140,7 +139,7 @@ void BM_Sampling(benchmark::State& state) {
   events::AdaptiveAccumulator accumulator(w.width, w.height, {});
   events::AaMap map;
   accumulator.Build(w.left, std::min(3 * kTick, w.end_ns), &map);
-  events::EdgeSamplingConfig config;  // 2500 points, 8×6
+  events::EdgeSamplingConfig config;                         // 2500 points, 8×6
   config.min_spacing_px = static_cast<int>(state.range(0));  // 0: the paper, 2: the DSEC preset
   std::uint64_t seed = 0;
   std::size_t samples = 0;

@@ -86,11 +86,7 @@ void AdaptiveAccumulator::Build(std::span<const Event> events, TimeNs t_ns, AaMa
   const std::span<const Event> window(begin, end);
   out->window_events = static_cast<std::int64_t>(window.size());
 
-  if (config_.stop_rule == AaStopRule::kContrast) {
-    BuildContrast(window, t_ns, out);
-  } else {
-    BuildActivity(window, out);
-  }
+  BuildContrast(window, t_ns, out);
 
   for (int b = 0; b < nb; ++b) {
     AaBlock& block = out->blocks[b];
@@ -109,7 +105,6 @@ void AdaptiveAccumulator::Build(std::span<const Event> events, TimeNs t_ns, AaMa
 
 void AdaptiveAccumulator::BuildContrast(std::span<const Event> window, TimeNs t_ns, AaMap* out) {
   const TimeNs dt_ns = std::max<TimeNs>(1, SecondsToNs(config_.check_interval_ms * 1e-3));
-  const TimeNs window_ns = SecondsToNs(config_.window_ms * 1e-3);
   auto check = [&] {
     for (std::size_t b = 0; b < out->blocks.size(); ++b) {
       AaBlock& block = out->blocks[b];
@@ -123,60 +118,14 @@ void AdaptiveAccumulator::BuildContrast(std::span<const Event> window, TimeNs t_
     }
   };
   auto open = [&](const Event& e) { return !out->blocks[grid_.BlockOf(e.x, e.y)].closed; };
-  // Checks on a fixed grid of event time: every δt from the window's accumulation start.
-  if (config_.order == AaOrder::kNewestFirst) {
-    TimeNs next_check = t_ns - dt_ns;
-    for (auto it = window.rbegin(); it != window.rend(); ++it) {
-      while (it->t_ns <= next_check) {
-        check();
-        next_check -= dt_ns;
-      }
-      if (open(*it)) Accumulate(*it, out);
-    }
-  } else {
-    TimeNs next_check = t_ns - window_ns + dt_ns;
-    for (const Event& e : window) {
-      while (e.t_ns > next_check) {
-        check();
-        next_check += dt_ns;
-      }
-      if (open(e)) Accumulate(e, out);
-    }
-  }
-}
-
-void AdaptiveAccumulator::BuildActivity(std::span<const Event> window, AaMap* out) {
-  // Activity recursion A_k = β_k A_{k−1} + 1, β_k = 1 / (1 + A_{k−1} |t_k − t_{k−1}|) per block
-  // (t in seconds; A ≈ √rate in steady state).
-  const std::size_t nb = out->blocks.size();
-  std::vector<double> activity(nb, 0.0), final_activity(nb, 0.0);
-  std::vector<TimeNs> previous(nb, 0);
-  std::vector<int> seen(nb, 0), checkpoints(nb, 0);
-  auto step = [&](std::size_t b, TimeNs t) {
-    const double gap_s = seen[b] == 0 ? 0.0 : std::abs(NsToSeconds(t - previous[b]));
-    activity[b] = activity[b] / (1.0 + activity[b] * gap_s) + 1.0;
-    previous[b] = t;
-    ++seen[b];
-  };
-  for (const Event& e : window)
-    step(static_cast<std::size_t>(grid_.BlockOf(e.x, e.y)), e.t_ns);
-  final_activity = activity;
-  std::fill(activity.begin(), activity.end(), 0.0);
-  std::fill(seen.begin(), seen.end(), 0);
-  // Newest first: accumulate until the block's activity has converged to its final value.
+  // Newest first, checks on a fixed grid of event time: every δt back from the tick.
+  TimeNs next_check = t_ns - dt_ns;
   for (auto it = window.rbegin(); it != window.rend(); ++it) {
-    const std::size_t b = static_cast<std::size_t>(grid_.BlockOf(it->x, it->y));
-    AaBlock& block = out->blocks[b];
-    if (block.closed) continue;
-    Accumulate(*it, out);
-    step(b, it->t_ns);
-    if (seen[b] % config_.activity_check_events != 0) continue;
-    if (checkpoints[b]++ > 0 &&
-        std::abs(activity[b] - final_activity[b]) < config_.activity_tolerance) {
-      block.closed = true;
-      const double n = static_cast<double>(block.active.size());
-      block.contrast = s2_[b] / n - (s1_[b] / n) * (s1_[b] / n);
+    while (it->t_ns <= next_check) {
+      check();
+      next_check -= dt_ns;
     }
+    if (open(*it)) Accumulate(*it, out);
   }
 }
 

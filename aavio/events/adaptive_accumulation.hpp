@@ -1,14 +1,14 @@
 #pragma once
-/// The adaptive accumulation (AA) map: the paper's Algorithm 1 (algorithm.md §3.2), with ESVO2's
-/// activity rule as the alternative (§3.3).
+/// The adaptive accumulation (AA) map: the paper's Algorithm 1 (algorithm.md §3.2).
 ///
 /// The image is tiled into a grid of blocks; each block accumulates event counts until it is
-/// "sharp": with the contrast rule, when the variance of its non-zero counts
+/// "sharp": when the variance of its non-zero counts
 ///   C = S2/n − (S1/n)²,  S1 = Σ A, S2 = Σ A², n = #{A > 0}   (O(1) per event)
 /// exceeds β at one of the checks made every δt of event time; then its counts freeze. Blocks
 /// with fast image motion freeze after a few milliseconds, slow ones keep the whole window, so
-/// every region shows its edges equally sharply. Newest-first accumulation (default) freezes the
-/// events nearest the tick, aligned with the time surface at the tick.
+/// every region shows its edges equally sharply. Accumulation runs newest first ([ESVO2]; the ICRA
+/// code runs forward from the window's start), so a block freezes on the events nearest the tick,
+/// aligned with the time surface at the tick.
 
 #include <cstdint>
 #include <opencv2/core/mat.hpp>
@@ -67,7 +67,6 @@ class AdaptiveAccumulator {
 
  private:
   void BuildContrast(std::span<const Event> window, TimeNs t_ns, AaMap* out);
-  void BuildActivity(std::span<const Event> window, AaMap* out);
   void Accumulate(const Event& e, AaMap* out);
 
   AdaptiveAccumulationConfig config_;

@@ -73,6 +73,7 @@ void TakeSpaced(const std::vector<std::uint32_t>& candidates, const std::uint8_t
 }  // namespace
 
 std::vector<int> BlockQuotas(const std::vector<int>& candidates, const EdgeSamplingConfig& config) {
+  constexpr double kProportionalShare = 0.75, kBlockCapFraction = 0.5;  // [ESVO2]
   const std::size_t nb = candidates.size();
   std::vector<int> quota(nb, 0), cap(nb, 0);
   std::int64_t total = 0;
@@ -82,10 +83,10 @@ std::vector<int> BlockQuotas(const std::vector<int>& candidates, const EdgeSampl
   const double budget = config.num_points;
   std::int64_t given = 0;
   for (std::size_t b = 0; b < nb; ++b) {
-    cap[b] = static_cast<int>(std::floor(config.block_cap_fraction * candidates[b]));
+    cap[b] = static_cast<int>(std::floor(kBlockCapFraction * candidates[b]));
     if (cap[b] == 0 && candidates[b] > 0) cap[b] = 1;  // a lone pixel may still be taken
-    const int proportional = static_cast<int>(std::floor(
-        config.proportional_share * budget * candidates[b] / static_cast<double>(total)));
+    const int proportional = static_cast<int>(
+        std::floor(kProportionalShare * budget * candidates[b] / static_cast<double>(total)));
     quota[b] = std::min(proportional, cap[b]);
     given += quota[b];
   }
@@ -179,7 +180,7 @@ std::vector<EdgeSample> SampleAaMap(const AaMap& map, const geometry::Rectificat
 std::vector<EdgeSample> SelectNewestEvents(std::span<const Event> events, TimeNs t_ns,
                                            const geometry::RectificationMaps& maps,
                                            const EdgeSamplingConfig& config) {
-  const TimeNs window_ns = SecondsToNs(config.newest_window_ms * 1e-3);
+  const TimeNs window_ns = SecondsToNs(kNewestEventsWindowMs * 1e-3);
   std::vector<EdgeSample> samples;
   for (auto it = events.rbegin(); it != events.rend(); ++it) {
     if (it->t_ns > t_ns) continue;
@@ -190,14 +191,6 @@ std::vector<EdgeSample> SelectNewestEvents(std::span<const Event> events, TimeNs
     s.x = it->x, s.y = it->y, s.count = 1;
     if (Rectified(maps, s.x, s.y, &s.u, &s.v)) samples.push_back(s);
   }
-  if (!config.denoise || samples.empty()) return samples;
-  cv::Mat image(maps.event_lut.rows, maps.event_lut.cols, CV_8UC1, cv::Scalar(0));
-  for (const EdgeSample& s : samples)
-    image.at<std::uint8_t>(s.y, s.x) = 255;
-  cv::Mat filtered;
-  cv::medianBlur(image, filtered, 3);
-  std::erase_if(samples,
-                [&](const EdgeSample& s) { return filtered.at<std::uint8_t>(s.y, s.x) == 0; });
   return samples;
 }
 

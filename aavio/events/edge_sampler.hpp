@@ -20,9 +20,9 @@ struct EdgeSample {
   std::uint16_t count = 0;     ///< AA count (1 for ESVO's events)
 };
 
-/// Per-block quotas (algorithm.md §3.4): `proportional_share`·M in proportion to the blocks'
-/// candidates n_i, each block capped at `block_cap_fraction`·n_i, and what is left of M shared
-/// evenly among the blocks with room, repeatedly, until M is met or every block is at its cap.
+/// Per-block quotas (algorithm.md §3.4, [ESVO2]): ¾ of M in proportion to the blocks' candidates
+/// n_i, each block capped at ½·n_i, and what is left of M shared evenly among the blocks with
+/// room, repeatedly, until M is met or every block is at its cap.
 std::vector<int> BlockQuotas(const std::vector<int>& candidates, const EdgeSamplingConfig& config);
 
 /// Samples the AA map: per block its quota of highest-count pixels, ties broken at random from
@@ -30,8 +30,11 @@ std::vector<int> BlockQuotas(const std::vector<int>& candidates, const EdgeSampl
 std::vector<EdgeSample> SampleAaMap(const AaMap& map, const geometry::RectificationMaps& maps,
                                     const EdgeSamplingConfig& config, std::uint64_t seed);
 
-/// ESVO's selection: the newest events of (t − newest_window, t], at most M, one sample each;
-/// with `denoise`, only those whose pixel survives a 3×3 median of their binary image.
+/// The window ESVO's selection looks back over [ms].
+inline constexpr double kNewestEventsWindowMs = 10.0;
+
+/// ESVO's selection: the newest events of (t − kNewestEventsWindowMs, t], at most M, one sample
+/// each.
 std::vector<EdgeSample> SelectNewestEvents(std::span<const Event> events, TimeNs t_ns,
                                            const geometry::RectificationMaps& maps,
                                            const EdgeSamplingConfig& config);

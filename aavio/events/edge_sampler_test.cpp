@@ -182,21 +182,5 @@ TEST(SelectNewestEvents, NewestWithinTheWindowUpToTheBudget) {
   EXPECT_EQ(newest.back().y, all[49].y);
 }
 
-TEST(SelectNewestEvents, DenoisingDropsIsolatedEvents) {
-  const geometry::RectificationMaps maps = testing::IdentityMaps(20, 20);
-  std::vector<Event> events;
-  for (int x = 2; x < 12; ++x) {  // a 3-pixel-thick line survives a 3×3 median
-    for (int y = 5; y < 8; ++y)
-      events.push_back({kNsPerMs, static_cast<std::uint16_t>(x), static_cast<std::uint16_t>(y), 1});
-  }
-  events.push_back({2 * kNsPerMs, 17, 17, 1});  // isolated
-  EdgeSamplingConfig config = Budget(1000);
-  config.denoise = true;
-  const std::vector<EdgeSample> kept = SelectNewestEvents(events, 5 * kNsPerMs, maps, config);
-  EXPECT_EQ(kept.size(), 30u - 4u);  // the line's four corners fall too
-  for (const EdgeSample& s : kept)
-    EXPECT_NE(s.x, 17);
-}
-
 }  // namespace
 }  // namespace aavio::events

@@ -65,22 +65,6 @@ Status RepresentationBuilder::Consume(CameraState& camera, TimeNs t_ns, bool kee
   const auto end = std::upper_bound(camera.pending.begin(), camera.pending.end(), t_ns,
                                     [](TimeNs t, const Event& e) { return t < e.t_ns; });
   std::span<const Event> batch(camera.pending.begin(), end);
-  // ICRA's safety valve: of a millisecond with more than k events keep every (n / k + 1)-th.
-  std::vector<Event> thinned;
-  const int k = config_.time_surface.max_events_per_ms;
-  if (k > 0) {
-    for (std::size_t i = 0; i < batch.size();) {
-      const TimeNs bin = batch[i].t_ns / kNsPerMs;
-      std::size_t j = i;
-      while (j < batch.size() && batch[j].t_ns / kNsPerMs == bin)
-        ++j;
-      const std::size_t n = j - i, keep_every = n > static_cast<std::size_t>(k) ? n / k + 1 : 1;
-      for (std::size_t m = i; m < j; m += keep_every)
-        thinned.push_back(batch[m]);
-      i = j;
-    }
-    batch = thinned;
-  }
   AAVIO_RETURN_IF_ERROR(camera.ts.Insert(batch));
   if (keep_window) window_.insert(window_.end(), batch.begin(), batch.end());
   camera.pending.erase(camera.pending.begin(), end);
@@ -110,18 +94,17 @@ Status RepresentationBuilder::Build(TimeNs t_ns, Observation* out, BuildOptions 
     cv::Mat interior = ImageRectifier::PaddedInterior(padded_);
     camera->ts.Render(t_ns, decay_ms, &interior);
     camera->rectifier.RectifyPadded(padded_, &ts);
-    MedianFilterTs(ts, config_.time_surface.median_half_size, &ts);
+    MedianFilterTs(ts, &ts);
   }
   out->timings.time_surface_ms = MsSince(start);
 
   start = Clock::now();
-  NegativeTs(out->ts_left, config_.time_surface, &out->negative_ts_left);
+  NegativeTs(out->ts_left, &out->negative_ts_left);
   SobelGradients(out->negative_ts_left, &out->grad_u, &out->grad_v);
   out->timings.derived_ms = MsSince(start);
 
   // The recent left events: only what AA and ESVO's selection look at.
-  const double keep_ms =
-      std::max(config_.adaptive_accumulation.window_ms, config_.edge_sampling.newest_window_ms);
+  const double keep_ms = std::max(config_.adaptive_accumulation.window_ms, kNewestEventsWindowMs);
   const TimeNs keep_from = t_ns - SecondsToNs(keep_ms * 1e-3);
   while (window_begin_ < window_.size() && window_[window_begin_].t_ns <= keep_from)
     ++window_begin_;

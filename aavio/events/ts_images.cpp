@@ -4,32 +4,17 @@
 
 namespace aavio::events {
 
-void MedianFilterTs(const cv::Mat& ts, int half_size, cv::Mat* out) {
-  if (half_size <= 0) {
-    if (out->data != ts.data) ts.copyTo(*out);
-    return;
-  }
-  cv::medianBlur(ts, *out, 2 * half_size + 1);
+void MedianFilterTs(const cv::Mat& ts, cv::Mat* out) {
+  cv::medianBlur(ts, *out, 3);
 }
 
 void SmoothTs(const cv::Mat& ts, int kernel, cv::Mat* out) {
   cv::GaussianBlur(ts, *out, cv::Size(kernel, kernel), 0.0, 0.0, cv::BORDER_REFLECT_101);
 }
 
-void NegativeTs(const cv::Mat& ts, const TimeSurfaceConfig& config, cv::Mat* out) {
+void NegativeTs(const cv::Mat& ts, cv::Mat* out) {
   cv::Mat base;
-  switch (config.negative_ts) {
-    case NegativeTsMode::kGaussian:
-      cv::GaussianBlur(ts, base, cv::Size(config.gaussian_kernel, config.gaussian_kernel), 0.0, 0.0,
-                       cv::BORDER_REFLECT_101);
-      break;
-    case NegativeTsMode::kOffsetFree: {
-      cv::blur(ts, base, cv::Size(config.offset_free_blur, config.offset_free_blur),
-               cv::Point(-1, -1), cv::BORDER_REFLECT_101);
-      ts.copyTo(base, ts > 0);  // keep the ridge where the events are; fill only empty pixels
-      break;
-    }
-  }
+  cv::GaussianBlur(ts, base, cv::Size(5, 5), 0.0, 0.0, cv::BORDER_REFLECT_101);
   cv::subtract(cv::Scalar(255), base, *out);
 }
 

@@ -1,23 +1,20 @@
 #pragma once
 /// The images derived from a rectified time surface (algorithm.md §2.3): the smoothed TS used by
-/// static stereo, the negative TS that tracking registers against (ESVO's Gaussian form or
-/// ESVO2's offset-free form) and its Sobel gradients. All CV_8UC1 in, explicit types out.
+/// static stereo, the negative TS that tracking registers against (ESVO's Gaussian form) and its
+/// Sobel gradients. All CV_8UC1 in, explicit types out.
 
 #include <opencv2/core/mat.hpp>
 
-#include "aavio/events/events_config.hpp"
-
 namespace aavio::events {
 
-/// TS after its median filter (3×3 for half size 1; 0 = none). In place allowed.
-void MedianFilterTs(const cv::Mat& ts, int half_size, cv::Mat* out);
+/// TS after its 3×3 median filter ([ESVO], [ICRA code]). In place allowed.
+void MedianFilterTs(const cv::Mat& ts, cv::Mat* out);
 
 /// Gaussian 5×5 (σ from the size, as OpenCV) smoothed TS for static stereo.
 void SmoothTs(const cv::Mat& ts, int kernel, cv::Mat* out);
 
-/// 255 − G(TS) (kGaussian, kernel `gaussian_kernel`) or 255 − OS-TS (kOffsetFree: the TS where it
-/// is > 0, the box-blurred TS of size `offset_free_blur` elsewhere).
-void NegativeTs(const cv::Mat& ts, const TimeSurfaceConfig& config, cv::Mat* out);
+/// 255 − G(TS), G a 5×5 Gaussian ([ESVO] kernelSize, [ICRA code]).
+void NegativeTs(const cv::Mat& ts, cv::Mat* out);
 
 /// 3×3 Sobel derivatives ∂u, ∂v of an image, divided by 8 (so they are per-pixel slopes), CV_32F.
 void SobelGradients(const cv::Mat& image, cv::Mat* d_u, cv::Mat* d_v);

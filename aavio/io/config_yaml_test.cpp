@@ -11,19 +11,20 @@ namespace {
 
 TEST(ConfigYaml, FlattensSectionsWithLineOrigins) {
   const std::string text =
-      "mapping:\n  eta: 0.1\n  static_stereo:\n    step: 3\nimu:\n  gyro_bias_rad_s: [0.01, 0, "
+      "mapping:\n  eta: 0.1\n  static_stereo:\n    max_disparity: 3\nimu:\n  gyro_bias_rad_s: "
+      "[0.01, 0, "
       "0]\n";
   Expected<std::vector<ConfigEntry>> entries = ParseConfigYaml(text, "my.yaml");
   ASSERT_TRUE(entries.ok()) << entries.status().message();
   ASSERT_EQ(entries->size(), 3u);
   EXPECT_EQ((*entries)[0].key, "mapping.eta");
   EXPECT_EQ((*entries)[0].value.origin, "my.yaml:2");
-  EXPECT_EQ((*entries)[1].key, "mapping.static_stereo.step");
+  EXPECT_EQ((*entries)[1].key, "mapping.static_stereo.max_disparity");
   EXPECT_TRUE((*entries)[2].value.is_list);
   pipeline::OdometryConfig config;
   ASSERT_TRUE(ApplyConfigEntries(*entries, &config).ok());
   EXPECT_DOUBLE_EQ(config.mapping.eta, 0.1);
-  EXPECT_EQ(config.mapping.static_stereo.step, 3);
+  EXPECT_EQ(config.mapping.static_stereo.max_disparity, 3);
   EXPECT_DOUBLE_EQ(config.imu.gyro_bias_rad_s[0], 0.01);
 }
 

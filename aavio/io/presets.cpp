@@ -3,22 +3,44 @@
 #include "aavio/io/config_yaml.hpp"
 
 namespace aavio::io {
+namespace {
 
-std::vector<std::string> PresetNames() {
+std::vector<std::string> Names(bool overlay) {
   std::vector<std::string> names;
-  for (const EmbeddedPreset& preset : EmbeddedPresets())
-    names.emplace_back(preset.name);
+  for (const EmbeddedPreset& preset : EmbeddedPresets()) {
+    if (preset.overlay == overlay) names.emplace_back(preset.name);
+  }
   return names;
 }
 
-Expected<std::vector<ConfigEntry>> PresetEntries(const std::string& name) {
+Expected<std::vector<ConfigEntry>> Entries(const std::string& name, bool overlay) {
+  const char* kind = overlay ? "overlay" : "preset";
   for (const EmbeddedPreset& preset : EmbeddedPresets()) {
-    if (name == preset.name) return ParseConfigYaml(preset.yaml, "preset " + name);
+    if (preset.overlay == overlay && name == preset.name)
+      return ParseConfigYaml(preset.yaml, std::string(kind) + " " + name);
   }
   std::string known;
-  for (const std::string& n : PresetNames())
+  for (const std::string& n : Names(overlay))
     known += (known.empty() ? "" : ", ") + n;
-  return NotFound("no preset named '" + name + "'; presets: " + known);
+  return NotFound("no " + std::string(kind) + " named '" + name + "'; " + kind + "s: " + known);
+}
+
+}  // namespace
+
+std::vector<std::string> PresetNames() {
+  return Names(false);
+}
+
+std::vector<std::string> OverlayNames() {
+  return Names(true);
+}
+
+Expected<std::vector<ConfigEntry>> PresetEntries(const std::string& name) {
+  return Entries(name, false);
+}
+
+Expected<std::vector<ConfigEntry>> OverlayEntries(const std::string& name) {
+  return Entries(name, true);
 }
 
 }  // namespace aavio::io

@@ -78,20 +78,15 @@ DepthMap DepthFusion::Fuse(const geometry::RigidTransform& T_world_frame, TimeNs
   };
   auto clean = [&] {
     if (!full()) return;
-    map.Clean(config_.depth_refinement.max_inv_depth_stddev, config_.fusion.min_age,
-              config_.inv_depth_min, config_.inv_depth_max);
-    if (config_.regularization.enabled) {
-      map.Regularize(config_.regularization, config_.fusion.compatibility_sigmas);
-    }
+    map.Clean(config_.depth_refinement.max_inv_depth_stddev, config_.inv_depth_min,
+              config_.inv_depth_max);
+    if (config_.regularization.enabled) map.Regularize();
   };
   fuse_fifo(static_);
-  if (config_.fusion.clean_temporal) {
-    fuse_fifo(temporal_);  // temporal points must be confirmed like static ones
-    clean();
-  } else {
-    clean();  // [ESVO2]: temporal points join after cleaning and are never cleaned
-    fuse_fifo(temporal_);
-  }
+  // Temporal points are fused before cleaning, so they need confirmation like static ones
+  // (aavio; ESVO2 adds them after cleaning and never cleans them).
+  fuse_fifo(temporal_);
+  clean();
   return map;
 }
 

@@ -88,7 +88,7 @@ void DepthMap::FuseCell(int x, int y, const DepthPoint& point, const FusionConfi
     Place(x, y, point);
     return;
   }
-  if (Compatible(*cell, point, config.compatibility_sigmas)) {
+  if (Compatible(*cell, point, kCompatibilitySigmas)) {
     DepthPoint fused = FuseStudentT(*cell, point);
     // A neighbouring estimate of the same batch, splatted into a shared cell, is no independent
     // confirmation (confirm_across_batches).
@@ -99,7 +99,7 @@ void DepthMap::FuseCell(int x, int y, const DepthPoint& point, const FusionConfi
   }
   // Occlusion: a clearly closer stored point stays; otherwise the new one replaces it only if
   // it is better in both variance and residual.
-  if (cell->rho - config.compatibility_sigmas * std::sqrt(cell->variance()) > point.rho) return;
+  if (cell->rho - kCompatibilitySigmas * std::sqrt(cell->variance()) > point.rho) return;
   if (point.variance() < cell->variance() && point.residual < cell->residual) Place(x, y, point);
 }
 
@@ -129,21 +129,22 @@ void DepthMap::InsertNaive(const DepthPoint& point) {
   }
 }
 
-void DepthMap::Clean(double max_stddev, int min_age, double rho_lo, double rho_hi) {
+void DepthMap::Clean(double max_stddev, double rho_lo, double rho_hi) {
   for (std::size_t slot = 0; slot < points_.size(); ++slot) {
     if (!Live(slot)) continue;
     const DepthPoint& p = points_[slot];
-    if (std::sqrt(p.variance()) > max_stddev || p.age < min_age || p.rho < rho_lo ||
+    if (std::sqrt(p.variance()) > max_stddev || p.age < kMinAge || p.rho < rho_lo ||
         p.rho > rho_hi) {
       Remove(static_cast<std::int32_t>(slot));
     }
   }
 }
 
-void DepthMap::Regularize(const RegularizationConfig& config, double compatibility_sigmas) {
+void DepthMap::Regularize() {
+  constexpr int kRadius = 5, kMinNeighbours = 8, kMinCloseNeighbours = 8;
   // Every point reads its neighbours from the map as it was before this pass: the new depths and
   // the removals are collected (points in parallel) and applied afterwards.
-  const int w = stereo_.width, h = stereo_.height, r = config.radius;
+  const int w = stereo_.width, h = stereo_.height, r = kRadius;
   // The live points in row-major cell order, as columns. With one occupancy bitset per row, the
   // occupied cells of a row between two columns are a contiguous run of this order (found by
   // popcounts), so a window is visited as 2r + 1 runs in the order of a row-major scan.
@@ -180,7 +181,7 @@ void DepthMap::Regularize(const RegularizationConfig& config, double compatibili
     s2[k] = p.s2;
     nu[k] = p.nu;
     // Compatible(p, q) = |ρp − ρq| < k·σp or < k·σq: each point's k·σ once, not per pair.
-    reach[k] = compatibility_sigmas * std::sqrt(p.variance());
+    reach[k] = kCompatibilitySigmas * std::sqrt(p.variance());
   }
   enum : char { kKeep, kFused, kRemove };
   std::vector<char> outcome(n, kKeep);
@@ -203,8 +204,8 @@ void DepthMap::Regularize(const RegularizationConfig& config, double compatibili
                               close.push_back(k);
                           }
                         }
-                        if (neighbours <= config.min_neighbours) continue;
-                        if (static_cast<int>(close.size()) <= config.min_close_neighbours) {
+                        if (neighbours <= kMinNeighbours) continue;
+                        if (static_cast<int>(close.size()) <= kMinCloseNeighbours) {
                           outcome[i] = kRemove;  // an outlier among many neighbours
                           continue;
                         }

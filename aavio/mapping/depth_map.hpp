@@ -12,22 +12,28 @@
 
 namespace aavio::mapping {
 
+/// Two estimates within this many σ (of either) are of the same surface ([ESVO]).
+inline constexpr double kCompatibilitySigmas = 2.0;
+/// Fusions a point needs to survive cleaning ([ESVO], [ICRA code]).
+inline constexpr int kMinAge = 1;
+
 class DepthMap {
  public:
   DepthMap(const RectifiedStereo& stereo, const geometry::RigidTransform& T_world_frame,
            TimeNs t_ns);
 
   /// Fuses a point already expressed in this frame into its neighbourhood of cells (2×2 for
-  /// radius 0, else 3×3): empty cells take a copy, compatible ones (|Δρ| < kσ of either) are
+  /// radius 0, else 3×3): empty cells take a copy, compatible ones (|Δρ| < 2σ of either) are
   /// fused (Student-t), incompatible ones follow the occlusion rule.
   void Fuse(const DepthPoint& point, const FusionConfig& config);
   /// Inserts into the 2×2 cells without fusing: on conflict keeps the closer stored point,
   /// otherwise replaces it if the new one has a smaller residual (the SGM bootstrap, §4.12).
   void InsertNaive(const DepthPoint& point);
-  /// Removes points with σ_ρ above max_stddev, age below min_age, or ρ outside [lo, hi].
-  void Clean(double max_stddev, int min_age, double rho_lo, double rho_hi);
-  /// Neighbourhood regularisation (§4.10).
-  void Regularize(const RegularizationConfig& config, double compatibility_sigmas);
+  /// Removes points with σ_ρ above max_stddev, age below kMinAge, or ρ outside [lo, hi].
+  void Clean(double max_stddev, double rho_lo, double rho_hi);
+  /// Neighbourhood regularisation (§4.10, [ESVO] rpg): a point with more than 8 neighbours within
+  /// 5 cells is removed when at most 8 of them are compatible, else fused with those.
+  void Regularize();
 
   /// The occupied cells' points (in the order their cells were first filled: deterministic).
   std::vector<DepthPoint> Points() const;

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "aavio/common/vector_clones.hpp"
+#include "aavio/mapping/static_stereo.hpp"
 
 namespace aavio::mapping {
 
@@ -45,7 +46,8 @@ AAVIO_AVX2_CLONES double StudentTScale2(std::span<const float> residuals, double
 
 namespace {
 
-constexpr int kMaxPatch = 64 * 64;
+constexpr int kMaxPatch = kPatchWidth * kPatchHeight;
+constexpr int kMaxIterations = 10;  // LM steps ([ICRA code], [ESVO])
 
 // Bilinear samples of a w×h patch centred at (x, y), one set of weights for all; false if any
 // sample would fall outside the image.
@@ -152,7 +154,7 @@ double JacobianNorm2(const Residual& f, double rho, double h, const Evaluation& 
 bool RefineOne(const RefinementInput& in, const Match& m, const RectifiedStereo& stereo,
                const MappingConfig& config, DepthPoint* out) {
   const DepthRefinementConfig& c = config.depth_refinement;
-  const Residual f(in, m, stereo, c.patch_width, c.patch_height);
+  const Residual f(in, m, stereo, kPatchWidth, kPatchHeight);
   if (!f.ok()) return false;
   const double nu = c.student_t_nu, s2_t = c.student_t_scale * c.student_t_scale;
   float raw[kMaxPatch];
@@ -169,12 +171,9 @@ bool RefineOne(const RefinementInput& in, const Match& m, const RectifiedStereo&
   Evaluation* e_ptr = &buffers[0];
   Weigh(raw, f.size(), nu, s2, e_ptr);  // scale_at left r(ρ) in raw
   double jtj = 0.0, jtr = 0.0;
-  if (c.max_iterations == 0) {
-    // ESVO2: ρ from matching, σ from one 5 % forward difference, ‖J‖ floored at 0.1.
-    jtj = std::max(0.01, JacobianNorm2(f, rho, 0.05 * rho, *e_ptr, &jtr));
-  } else {
+  {
     double lambda = 1e-3;
-    for (int iteration = 0; iteration < c.max_iterations; ++iteration) {
+    for (int iteration = 0; iteration < kMaxIterations; ++iteration) {
       const double h = std::max(1e-7, 1e-3 * rho);
       jtj = JacobianNorm2(f, rho, h, *e_ptr, &jtr);
       if (jtj <= 1e-12) break;
@@ -209,18 +208,16 @@ bool RefineOne(const RefinementInput& in, const Match& m, const RectifiedStereo&
   const double sigma_t2 = nu / (nu - 2.0) * s2_t;
   const double variance = sigma_t2 / jtj;
   // Culling (algorithm.md §4.7).
-  const double area = static_cast<double>(c.patch_width) * c.patch_height;
+  const double area = static_cast<double>(kPatchWidth) * kPatchHeight;
   const TemporalStereoConfig& t = config.temporal_stereo;
   const bool temporal = m.kind == StereoKind::kTemporal;
-  // The AA maps' own thresholds apply to residuals on the AA maps only.
-  const bool on_aa = temporal && !t.refine_on_time_surfaces;
+  // Temporal residuals are on the AA maps, which have their own thresholds.
   const double max_stddev =
-      on_aa && t.max_inv_depth_stddev > 0.0 ? t.max_inv_depth_stddev : c.max_inv_depth_stddev;
+      temporal && t.max_inv_depth_stddev > 0.0 ? t.max_inv_depth_stddev : c.max_inv_depth_stddev;
   const double residual =
-      on_aa && t.residual_threshold > 0.0 ? t.residual_threshold : c.residual_threshold;
+      temporal && t.residual_threshold > 0.0 ? t.residual_threshold : c.residual_threshold;
   if (std::sqrt(variance) > max_stddev) return false;
-  const double max_relative =
-      temporal && t.max_relative_stddev > 0.0 ? t.max_relative_stddev : c.max_relative_stddev;
+  const double max_relative = c.max_relative_stddev;
   if (max_relative > 0.0 && std::sqrt(variance) > max_relative * rho) return false;
   if (e_ptr->cost > residual * residual * area) return false;
   if (rho < config.inv_depth_min || rho > config.inv_depth_max) return false;

@@ -3,8 +3,8 @@
 /// on ρ of the Student-t-weighted patch residual — left TS minus right TS at the disparity of ρ
 /// for static matches; current AA minus past AA at the epipolar position of ρ for temporal ones
 /// (the paper's temporal residual on AA maps, as ESVO2 evaluates it). Uncertainty from the
-/// Jacobian: σ_ρ² = σ_t² / JᵀJ, σ_t² = ν/(ν − 2) s_t². `max_iterations = 0` keeps ρ from matching
-/// and only evaluates σ_ρ (ESVO2). Estimates failing the culling rules (§4.7) are dropped.
+/// Jacobian: σ_ρ² = σ_t² / JᵀJ, σ_t² = ν/(ν − 2) s_t². At most 10 steps ([ICRA code], [ESVO]; the
+/// patch is static stereo's 15×7). Estimates failing the culling rules (§4.7) are dropped.
 
 #include <opencv2/core/mat.hpp>
 #include <span>

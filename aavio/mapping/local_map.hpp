@@ -9,7 +9,6 @@
 #include "aavio/common/time.hpp"
 #include "aavio/geometry/rigid_transform.hpp"
 #include "aavio/mapping/depth_point.hpp"
-#include "aavio/mapping/mapping_config.hpp"
 
 namespace aavio::mapping {
 
@@ -26,11 +25,5 @@ struct LocalMap {
 };
 
 using LocalMapPtr = std::shared_ptr<const LocalMap>;
-
-/// The world points tracking registers against: all of them, or (fusion.track_unconfirmed_temporal
-/// false) those of a cleaned map without the temporal points that joined it after cleaning
-/// unconfirmed (age below fusion.min_age, with fusion.clean_temporal false). Maps still filling
-/// (not confirmed) are given whole: none of their points is confirmed yet.
-std::vector<Eigen::Vector3d> PointsForTracking(const LocalMap& map, const FusionConfig& fusion);
 
 }  // namespace aavio::mapping

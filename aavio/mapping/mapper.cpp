@@ -74,15 +74,11 @@ const PosedObservation* FindTemporalPartner(std::span<const PosedObservation> hi
   return nullptr;
 }
 
-namespace {
-
-// Each temporal element of `items` (DepthPoint or Match; a subset of `matched_at`, in order, among
-// static ones) to its sample's snapped position.
-template <typename T>
-void MoveTemporalOntoSnapped(const std::vector<Eigen::Vector2f>& matched_at,
-                             const std::vector<Eigen::Vector2f>& snapped, std::vector<T>* items) {
+void MoveOntoNewestEdge(const std::vector<Eigen::Vector2f>& matched_at,
+                        const std::vector<Eigen::Vector2f>& snapped,
+                        std::vector<DepthPoint>* points) {
   std::size_t j = 0;
-  for (T& p : *items) {
+  for (DepthPoint& p : *points) {
     if (p.kind != StereoKind::kTemporal) continue;
     while (j < matched_at.size() && (matched_at[j].x() != p.u || matched_at[j].y() != p.v))
       ++j;
@@ -90,20 +86,6 @@ void MoveTemporalOntoSnapped(const std::vector<Eigen::Vector2f>& matched_at,
     p.u = snapped[j].x();
     p.v = snapped[j].y();
   }
-}
-
-}  // namespace
-
-void MoveOntoNewestEdge(const std::vector<Eigen::Vector2f>& matched_at,
-                        const std::vector<Eigen::Vector2f>& snapped,
-                        std::vector<DepthPoint>* points) {
-  MoveTemporalOntoSnapped(matched_at, snapped, points);
-}
-
-void MoveMatchesOntoNewestEdge(const std::vector<Eigen::Vector2f>& matched_at,
-                               const std::vector<Eigen::Vector2f>& snapped,
-                               std::vector<Match>* matches) {
-  MoveTemporalOntoSnapped(matched_at, snapped, matches);
 }
 
 TemporalPartners FindTemporalPartners(std::span<const PosedObservation> history,
@@ -160,7 +142,7 @@ Status Mapper::Initialize(const PosedObservation& now) {
                     points.size(), samples.size(), config_.bootstrap.min_points));
     }
     for (DepthPoint& p : points)
-      p.age = config_.fusion.min_age;  // survives the first cleanings, as SGM points
+      p.age = kMinAge;  // survives the first cleanings, as SGM points
   } else {
     std::vector<Eigen::Vector2f> positions;
     for (const events::EdgeSample& s : obs.samples)
@@ -192,9 +174,10 @@ Status Mapper::Update(const PosedObservation& now, const PosedObservation* partn
   const std::vector<events::EdgeSample> on_aa_map = samples;
   const bool at_aa_pixels = config_.temporal_stereo.match_at_aa_pixels;
   if (config_.snap_to_edge_px > 0.0)
-    SnapToNewestEdge(obs.negative_ts_left, obs.grad_u, obs.grad_v, config_.snap_to_edge_px, &samples);
+    SnapToNewestEdge(obs.negative_ts_left, obs.grad_u, obs.grad_v, config_.snap_to_edge_px,
+                     &samples);
   report->samples = static_cast<int>(samples.size());
-  if (report->samples < config_.min_points) {
+  if (report->samples < kMinSamples) {
     report->total_ms = MsSince(start);
     return Status::Ok();  // too little to map this cycle; the old map stays published
   }
@@ -216,17 +199,10 @@ Status Mapper::Update(const PosedObservation& now, const PosedObservation* partn
       temporal_group.emplace_back(m.u, m.v);
       temporal_snapped.emplace_back(s.u, s.v);
     }
-    if (!horizontal || !temporal || config_.temporal_stereo.also_static) {
+    if (!horizontal || !temporal) {
       static_group.emplace_back(s.u, s.v);
       static_horizontal.push_back(horizontal ? 1 : 0);
     }
-  }
-  if (config_.temporal_stereo.refine_on_time_surfaces && !temporal_group.empty() &&
-      partner->obs->ts_left.size() != obs.ts_left.size()) {
-    return FailedPrecondition(
-        "mapping.temporal_stereo.refine_on_time_surfaces needs the temporal partner's left time "
-        "surface (PosedObservation::obs->ts_left), of the current one's size; keep it in the "
-        "history or turn the option off");
   }
   report->static_candidates = static_cast<int>(static_group.size());
   report->temporal_candidates = static_cast<int>(temporal_group.size());
@@ -247,8 +223,7 @@ Status Mapper::Update(const PosedObservation& now, const PosedObservation* partn
     }
   }
   if (config_.static_stereo.out_of_view_radius_px > 0 && local_map_) {
-    DropOutOfViewMatches(*local_map_, now.T_world_obs, stereo_,
-                         config_.static_stereo.patch_width / 2,
+    DropOutOfViewMatches(*local_map_, now.T_world_obs, stereo_, kPatchWidth / 2,
                          config_.static_stereo.out_of_view_radius_px, &matches);
   }
   report->static_matches = static_cast<int>(matches.size());
@@ -259,7 +234,7 @@ Status Mapper::Update(const PosedObservation& now, const PosedObservation* partn
     aa_now = ToFloat(obs.aa_map, smooth_aa);
     aa_past = ToFloat(partner->obs->aa_map, smooth_aa);
     T_past_now = partner->T_world_obs.Inverse() * now.T_world_obs;
-    TemporalStereoInput input{aa_now, aa_past, T_past_now, &obs.grad_u, &obs.grad_v};
+    TemporalStereoInput input{aa_now, aa_past, T_past_now};
     cv::Mat aa_check;
     geometry::RigidTransform T_check_now;
     if (check != nullptr) {
@@ -277,20 +252,10 @@ Status Mapper::Update(const PosedObservation& now, const PosedObservation* partn
 
   // Refinement and culling.
   t = Clock::now();
-  RefinementInput refine{left, right, aa_now.empty() ? nullptr : &aa_now,
-                         aa_past.empty() ? nullptr : &aa_past, T_past_now};
-  cv::Mat ts_past;
-  const bool on_ts = config_.temporal_stereo.refine_on_time_surfaces && !temporal_group.empty();
-  if (on_ts) {
-    // Temporal depths refined where the point is published: at the snapped pixel, on the time
-    // surfaces' newest edges of now and of the partner.
-    ts_past = ToFloat(partner->obs->ts_left, smooth);
-    refine.aa_now = &left;
-    refine.aa_past = &ts_past;
-    MoveMatchesOntoNewestEdge(temporal_group, temporal_snapped, &matches);
-  }
+  const RefinementInput refine{left, right, aa_now.empty() ? nullptr : &aa_now,
+                               aa_past.empty() ? nullptr : &aa_past, T_past_now};
   std::vector<DepthPoint> refined = RefineDepths(refine, matches, stereo_, config_);
-  if (!on_ts) MoveOntoNewestEdge(temporal_group, temporal_snapped, &refined);
+  MoveOntoNewestEdge(temporal_group, temporal_snapped, &refined);
   report->refinement_ms = MsSince(t);
 
   // Fusion: one batch per kind, then a new map at the current pose.

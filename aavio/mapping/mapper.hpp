@@ -20,6 +20,11 @@
 
 namespace aavio::mapping {
 
+/// A cycle with fewer usable edge samples maps nothing (the old map stays published).
+inline constexpr int kMinSamples = 100;
+/// Mapping observations kept for the temporal partner search (1 s at 20 Hz).
+inline constexpr int kTemporalHistoryLength = 20;
+
 struct PosedObservation {
   std::shared_ptr<const events::Observation> obs;
   geometry::RigidTransform T_world_obs;
@@ -55,10 +60,6 @@ std::vector<events::EdgeSample> MappingSamples(const events::Observation& obs,
 void MoveOntoNewestEdge(const std::vector<Eigen::Vector2f>& matched_at,
                         const std::vector<Eigen::Vector2f>& snapped,
                         std::vector<DepthPoint>* points);
-/// The same move for temporal matches, before refinement (temporal_stereo.refine_on_time_surfaces).
-void MoveMatchesOntoNewestEdge(const std::vector<Eigen::Vector2f>& matched_at,
-                               const std::vector<Eigen::Vector2f>& snapped,
-                               std::vector<Match>* matches);
 
 struct MappingCycleReport {
   int samples = 0;  ///< edge samples considered (after the cap and the border)

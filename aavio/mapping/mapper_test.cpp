@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "aavio/mapping/depth_map.hpp"
 #include "aavio/mapping/mapping_test_utils.hpp"
+#include "aavio/mapping/sgm_bootstrap.hpp"
 
 namespace aavio::mapping {
 namespace {
@@ -110,10 +112,8 @@ TEST(Mapper, BootstrapsByBlockMatching) {
   const cv::Mat valid(120, 160, CV_8UC1, cv::Scalar(255));
   MappingConfig config;
   config.bootstrap.method = BootstrapMethod::kBlockMatching;
-  config.bootstrap.inv_depth_stddev = 0.05;  // what SGM points would carry
   config.bootstrap.min_points = 100;
   config.max_points = 5000;
-  config.fusion.min_age = 2;
   Mapper mapper(stereo, valid, config);
   ASSERT_TRUE(mapper.Initialize({obs, {}}).ok());
   const LocalMapPtr map = mapper.local_map();
@@ -121,9 +121,9 @@ TEST(Mapper, BootstrapsByBlockMatching) {
   const double rho = 16.0 / stereo.fb();
   for (const DepthPoint& p : map->points) {
     EXPECT_NEAR(p.rho, rho, 0.01 * rho);
-    EXPECT_EQ(p.age, 2);
-    // Refined: σ from the Jacobian, not SGM's fixed bootstrap.inv_depth_stddev.
-    EXPECT_LT(std::sqrt(p.variance()), 0.1 * config.bootstrap.inv_depth_stddev);
+    EXPECT_EQ(p.age, kMinAge);
+    // Refined: σ from the Jacobian, far below SGM's fixed σ_ρ for a point this near.
+    EXPECT_LT(std::sqrt(p.variance()), 0.1 * kSgmInvDepthStddev * 50.0);
   }
 
   config.bootstrap.min_points = 100000;
@@ -135,36 +135,31 @@ TEST(Mapper, BootstrapsByBlockMatching) {
   EXPECT_FALSE(picky.initialized());
 }
 
-// The η split: near-horizontal samples go to temporal stereo only (the paper), or to both
-// (temporal_stereo.also_static); the others always to static stereo.
-TEST(Mapper, NearHorizontalSamplesGoToTemporalOrBoth) {
+// The η split (the paper): near-horizontal samples go to temporal stereo only, the others to
+// static stereo.
+TEST(Mapper, NearHorizontalSamplesGoToTemporalStereo) {
   const RectifiedStereo stereo = testing::SmallStereo();
   const std::shared_ptr<events::Observation> obs = PlaneObservation();
   const cv::Mat valid(120, 160, CV_8UC1, cv::Scalar(255));
   geometry::RigidTransform T_world_past;
   T_world_past.t = {0.0, -0.5, 0.0};
   const PosedObservation partner{obs, T_world_past};
-  MappingCycleReport split, both;
-  for (const bool also_static : {false, true}) {
-    MappingConfig config;
-    config.bootstrap.min_points = 100;
-    config.max_points = 5000;
-    config.temporal_stereo.also_static = also_static;
-    Mapper mapper(stereo, valid, config);
-    ASSERT_TRUE(mapper.Initialize({obs, {}}).ok());
-    ASSERT_TRUE(mapper.Update({obs, {}}, &partner, also_static ? &both : &split).ok());
-  }
+  MappingConfig config;
+  config.bootstrap.min_points = 100;
+  config.max_points = 5000;
+  Mapper mapper(stereo, valid, config);
+  ASSERT_TRUE(mapper.Initialize({obs, {}}).ok());
+  MappingCycleReport split;
+  ASSERT_TRUE(mapper.Update({obs, {}}, &partner, &split).ok());
   EXPECT_GT(split.temporal_candidates, 20);  // the wave texture has near-horizontal edges
+  EXPECT_GT(split.static_candidates, 20);
   EXPECT_EQ(split.static_candidates + split.temporal_candidates, split.samples);
-  EXPECT_EQ(both.temporal_candidates, split.temporal_candidates);
-  EXPECT_EQ(both.static_candidates, both.samples);
-  EXPECT_GT(both.static_points, split.static_points);
 }
 
-// temporal_stereo.refine_on_time_surfaces: the partner is 0.5 m above, and its AA map agrees with
-// a plane at 20.1 m while its time surface has the plane at 19 m (as if the newest edges had
-// moved on). Temporal depths follow the AA maps by default and the time surfaces with the option.
-TEST(Mapper, TemporalDepthsRefineOnTheTimeSurfacesWhenAsked) {
+// Temporal depths are refined on the AA maps: the partner is 0.5 m above, and its AA map agrees
+// with a plane at 20.1 m while its time surface has the plane at 19 m (as if the newest edges had
+// moved on); the temporal points say 20.1 m.
+TEST(Mapper, TemporalDepthsFollowTheAaMaps) {
   const RectifiedStereo stereo = testing::SmallStereo();
   const std::shared_ptr<events::Observation> obs = PlaneObservation();
   const double z_aa = stereo.fb() / 16.0, z_ts = 19.0, baseline_m = 0.5;
@@ -177,39 +172,22 @@ TEST(Mapper, TemporalDepthsRefineOnTheTimeSurfacesWhenAsked) {
   T_world_past.t = {0.0, -baseline_m, 0.0};
   const PosedObservation partner{past, T_world_past};
   const cv::Mat valid(120, 160, CV_8UC1, cv::Scalar(255));
-  for (const bool on_ts : {false, true}) {
-    SCOPED_TRACE(on_ts ? "on the time surfaces" : "on the AA maps");
-    MappingConfig config;
-    config.max_points = 5000;
-    config.eta = 1e9;  // every sample to temporal stereo
-    config.fusion.publish_while_filling = true;
-    config.temporal_stereo.refine_on_time_surfaces = on_ts;
-    Mapper mapper(stereo, valid, config);
-    MappingCycleReport report;
-    ASSERT_TRUE(mapper.Update({obs, {}}, &partner, &report).ok());
-    EXPECT_EQ(report.static_candidates, 0);
-    ASSERT_GT(report.temporal_points, 300);
-    std::vector<double> depths;
-    for (const DepthPoint& p : mapper.local_map()->points) {
-      EXPECT_EQ(p.kind, StereoKind::kTemporal);
-      depths.push_back(1.0 / p.rho);
-    }
-    std::nth_element(depths.begin(), depths.begin() + depths.size() / 2, depths.end());
-    const double expected = on_ts ? z_ts : z_aa;
-    EXPECT_NEAR(depths[depths.size() / 2], expected, 0.005 * expected);
-  }
-  // A partner without its time surface: a clear error, not a crash.
   MappingConfig config;
-  config.eta = 1e9;
-  config.temporal_stereo.refine_on_time_surfaces = true;
+  config.max_points = 5000;
+  config.eta = 1e9;  // every sample to temporal stereo
+  config.fusion.publish_while_filling = true;
   Mapper mapper(stereo, valid, config);
-  auto bare = std::make_shared<events::Observation>(*past);
-  bare->ts_left = cv::Mat();
-  const PosedObservation bare_partner{bare, T_world_past};
   MappingCycleReport report;
-  const Status status = mapper.Update({obs, {}}, &bare_partner, &report);
-  EXPECT_EQ(status.code(), StatusCode::kFailedPrecondition);
-  EXPECT_NE(status.message().find("refine_on_time_surfaces"), std::string::npos);
+  ASSERT_TRUE(mapper.Update({obs, {}}, &partner, &report).ok());
+  EXPECT_EQ(report.static_candidates, 0);
+  ASSERT_GT(report.temporal_points, 300);
+  std::vector<double> depths;
+  for (const DepthPoint& p : mapper.local_map()->points) {
+    EXPECT_EQ(p.kind, StereoKind::kTemporal);
+    depths.push_back(1.0 / p.rho);
+  }
+  std::nth_element(depths.begin(), depths.begin() + depths.size() / 2, depths.end());
+  EXPECT_NEAR(depths[depths.size() / 2], z_aa, 0.005 * z_aa);
 }
 
 }  // namespace

@@ -12,19 +12,12 @@ bool IsOdd(int n) {
 
 Status StaticStereoConfig::Validate() const {
   FieldChecker check;
-  check
-      .Require(patch_width >= 3 && patch_width <= 63 && IsOdd(patch_width), "patch_width",
-               "must be odd, from 3 to 63")
-      .Require(patch_height >= 1 && patch_height <= 63 && IsOdd(patch_height), "patch_height",
-               "must be odd, from 1 to 63")
-      .InRange("min_disparity", min_disparity, 0, 10000)
+  check.InRange("min_disparity", min_disparity, 0, 10000)
       .InRange("max_disparity", max_disparity, 1, 10000)
       .Require(min_disparity < max_disparity, "min_disparity",
                "must be below max_disparity (" + FieldChecker::Num(max_disparity) + ")")
-      .InRange("step", step, 1, 32)
       .Require(zncc_threshold > 0.0 && zncc_threshold <= 1.0, "zncc_threshold",
                "= " + FieldChecker::Num(zncc_threshold) + " must be in (0, 1] (cost ½(1 − ZNCC))")
-      .InRange("empty_patch_fraction", empty_patch_fraction, 0.0, 1.0)
       .InRange("uniqueness", uniqueness, 0.0, 1.0)
       .InRange("left_right_tolerance_px", left_right_tolerance_px, -1, 100)
       .InRange("out_of_view_radius_px", out_of_view_radius_px, 0, 50);
@@ -39,34 +32,27 @@ Status TemporalStereoConfig::Validate() const {
       .Require(patch_cols >= 3 && patch_cols <= 127 && IsOdd(patch_cols), "patch_cols",
                "must be odd, from 3 to 127")
       .Positive("min_translation_m", min_translation_m)
-      .Positive("threshold_factor", threshold_factor)
       .NonNegative("min_parallax_px", min_parallax_px)
       .NonNegative("max_relative_depth_error", max_relative_depth_error)
-      .InRange("min_edge_angle_deg", min_edge_angle_deg, 0.0, 90.0)
-      .InRange("uniqueness", uniqueness, 0.0, 1.0)
       .NonNegative("cross_check_px", cross_check_px)
       .Positive("cross_check_spacing", cross_check_spacing)
       .Positive("min_depth_m", min_depth_m)
       .Require(max_depth_m > min_depth_m, "max_depth_m",
                "= " + FieldChecker::Num(max_depth_m) + " must exceed min_depth_m (" +
-                   FieldChecker::Num(min_depth_m) + ")")
-      .InRange("history_length", history_length, 2, 10000);
+                   FieldChecker::Num(min_depth_m) + ")");
   return check.status();
 }
 
 Status DepthRefinementConfig::Validate() const {
   FieldChecker check;
-  check.InRange("max_iterations", max_iterations, 0, 1000)
-      .Require(patch_width >= 1 && patch_width <= 63 && IsOdd(patch_width), "patch_width",
-               "must be odd, from 1 to 63")
-      .Require(patch_height >= 1 && patch_height <= 63 && IsOdd(patch_height), "patch_height",
-               "must be odd, from 1 to 63")
+  check
       .Require(
           student_t_nu > 2.0 && student_t_nu < 1000.0, "student_t_nu",
           "= " + FieldChecker::Num(student_t_nu) + " must be in (2, 1000): ν ≤ 2 has no variance")
       .Positive("student_t_scale", student_t_scale)
       .Positive("residual_threshold", residual_threshold)
-      .Positive("max_inv_depth_stddev", max_inv_depth_stddev);
+      .Positive("max_inv_depth_stddev", max_inv_depth_stddev)
+      .NonNegative("max_relative_stddev", max_relative_stddev);
   return check.status();
 }
 
@@ -74,30 +60,13 @@ Status FusionConfig::Validate() const {
   FieldChecker check;
   check.InRange("max_frames", max_frames, 1, 1000)
       .InRange("max_points", max_points, 1, 10000000)
-      .InRange("radius", radius, 0, 10)
-      .InRange("min_age", min_age, 0, 1000)
-      .Positive("compatibility_sigmas", compatibility_sigmas);
-  return check.status();
-}
-
-Status RegularizationConfig::Validate() const {
-  FieldChecker check;
-  check.InRange("radius", radius, 1, 100)
-      .NonNegative("min_neighbours", min_neighbours)
-      .NonNegative("min_close_neighbours", min_close_neighbours)
-      .Require(min_close_neighbours <= min_neighbours, "min_close_neighbours",
-               "must not exceed min_neighbours (" + FieldChecker::Num(min_neighbours) + ")");
+      .InRange("radius", radius, 0, 10);
   return check.status();
 }
 
 Status BootstrapConfig::Validate() const {
   FieldChecker check;
-  check.InRange("min_points", min_points, 1, 10000000)
-      .Require(block_size >= 1 && block_size <= 31 && IsOdd(block_size), "block_size",
-               "must be odd, from 1 to 31 (OpenCV StereoSGBM)")
-      .InRange("uniqueness_ratio", uniqueness_ratio, 0, 100)
-      .Positive("inv_depth_stddev", inv_depth_stddev)
-      .InRange("max_relative_stddev", max_relative_stddev, 0.0, 100.0);
+  check.InRange("min_points", min_points, 1, 10000000);
   return check.status();
 }
 
@@ -110,9 +79,6 @@ Status MappingConfig::Validate() const {
                    FieldChecker::Num(inv_depth_min) + "); the depth range is [1/inv_depth_max, " +
                    "1/inv_depth_min] m")
       .InRange("max_points", max_points, 1, 1000000)
-      .InRange("min_points", min_points, 0, 1000000)
-      .Require(min_points <= max_points, "min_points",
-               "must not exceed max_points (" + FieldChecker::Num(max_points) + ")")
       .NonNegative("eta", eta)
       .InRange("snap_to_edge_px", snap_to_edge_px, 0.0, 5.0)
       .Nested("static_stereo", static_stereo)

@@ -11,14 +11,10 @@ namespace aavio::mapping {
 
 /// Left/right block matching along rectified rows (algorithm.md §4.3).
 struct StaticStereoConfig {
-  int patch_width = 15;                ///< patch columns (all reference configs)
-  int patch_height = 7;                ///< patch rows
-  int min_disparity = 0;               ///< [px], further bounded by the depth range
-  int max_disparity = 150;             ///< [px], further bounded by the depth range
-  int step = 1;                        ///< coarse search step [px] ([ICRA]; ESVO2 DSEC 3)
-  double zncc_threshold = 0.1;         ///< θ: accept cost ½(1 − ZNCC) below it ([ICRA], [ESVO])
-  bool smooth_time_surface = true;     ///< Gaussian 5×5 on the TS before matching (DSEC configs)
-  double empty_patch_fraction = 0.95;  ///< reject patches with more than this share of TS < 1
+  int min_disparity = 0;            ///< [px], further bounded by the depth range
+  int max_disparity = 150;          ///< [px], further bounded by the depth range
+  double zncc_threshold = 0.1;      ///< θ: accept cost ½(1 − ZNCC) below it ([ICRA], [ESVO])
+  bool smooth_time_surface = true;  ///< Gaussian 5×5 on the TS before matching (DSEC configs)
   /// Reject a match when another local minimum's ZNCC is within this fraction of the best's
   /// (e.g. 0.1: a rival with ≥ 90 % of the best correlation); 0 = off, as the reference codes.
   double uniqueness = 0.0;
@@ -33,14 +29,10 @@ struct StaticStereoConfig {
 
   template <typename V>
   void VisitFields(V&& v) {
-    v("patch_width", patch_width);
-    v("patch_height", patch_height);
     v("min_disparity", min_disparity);
     v("max_disparity", max_disparity);
-    v("step", step);
     v("zncc_threshold", zncc_threshold);
     v("smooth_time_surface", smooth_time_surface);
-    v("empty_patch_fraction", empty_patch_fraction);
     v("uniqueness", uniqueness);
     v("left_right_tolerance_px", left_right_tolerance_px);
     v("out_of_view_radius_px", out_of_view_radius_px);
@@ -51,15 +43,9 @@ struct StaticStereoConfig {
 /// AA-now vs AA-past matching for edges parallel to the baseline (algorithm.md §4.4).
 struct TemporalStereoConfig {
   bool enabled = true;
-  /// aavio (false = the paper: near-horizontal samples go to temporal stereo only): they also go
-  /// to static stereo, and fusion merges what either finds. With ground-truth poses the DSEC
-  /// twins' maps gain 1-2.5 points of completeness at equal or lower error, but the odometry
-  /// drifts more (ATE 04a 0.11 -> 0.13 %, 11a 0.22 -> 0.27 %): off in the presets.
-  bool also_static = false;
   int patch_rows = 5;  ///< wide flat patch ([ICRA] 5×31 hard-coded)
   int patch_cols = 31;
   double min_translation_m = 0.3;  ///< partner at least this far away ([ICRA] 0.3 hard-coded)
-  double threshold_factor = 3.0;   ///< accept cost < factor × static zncc_threshold ([ICRA] 3θ)
   /// Skip pixels whose epipolar segment over the depth range is shorter than this (aavio): with
   /// forward motion pixels near the focus of expansion have almost no parallax.
   double min_parallax_px = 0.0;
@@ -68,13 +54,6 @@ struct TemporalStereoConfig {
   /// Reject a match whose depth would move by more than this fraction for one pixel of matching
   /// error (aavio; 0 = off): triangulation too ill-conditioned to be worth a map point.
   double max_relative_depth_error = 0.0;
-  /// Skip pixels whose edge runs within this angle of the epipolar segment (aavio; 0 = off):
-  /// along its own edge a patch matches everywhere — the ambiguity that sent these pixels away
-  /// from static stereo returns whenever the motion is parallel to the edge.
-  double min_edge_angle_deg = 0.0;
-  /// Reject a match when another local minimum along the segment comes this close to the best's
-  /// correlation (aavio, as static_stereo.uniqueness; 0 = off).
-  double uniqueness = 0.0;
   /// Cross-check against a second partner (aavio; 0 = off): the newest observation at least
   /// cross_check_spacing × min_translation_m beyond the first partner is searched too, and a
   /// match is kept only if both depths agree within this many pixels of matching error (the sum
@@ -94,54 +73,35 @@ struct TemporalStereoConfig {
   /// surface's newest edge, not the AA maps' edges, and on the DSEC twins that left temporal
   /// depths 1.5-2.3 % too near (median; docs/mapping.md).
   bool match_at_aa_pixels = true;
-  /// Refine each temporal depth where the point joins the map, at its snapped pixel, on the left
-  /// time surfaces of now and of the partner (their newest edges), starting from the depth
-  /// matched on the AA maps (aavio). False (paper): refined on the AA maps at the pixel it was
-  /// matched at, then moved onto the snapped pixel with its depth kept.
-  bool refine_on_time_surfaces = false;
   /// Culling of temporal estimates ([ESVO2] residual_vis_threshold_ln, stdVar_vis_threshold_ln):
-  /// the AA residual differs from the TS one; ≤ 0 uses depth_refinement's thresholds, as do
-  /// temporal estimates refined on the time surfaces (refine_on_time_surfaces).
+  /// the AA residual differs from the TS one; ≤ 0 uses depth_refinement's thresholds.
   double residual_threshold = 0.0;
   double max_inv_depth_stddev = 0.0;
-  /// σ_ρ / ρ culling of temporal estimates (aavio; ≤ 0 uses depth_refinement.max_relative_stddev).
-  double max_relative_stddev = 0.0;
   double min_depth_m = 0.8;  ///< triangulated depth gate ([ICRA] 0.8–40 m hard-coded)
   double max_depth_m = 40.0;
-  int history_length = 20;  ///< mapping observations kept for the partner search (1 s at 20 Hz)
 
   template <typename V>
   void VisitFields(V&& v) {
     v("enabled", enabled);
-    v("also_static", also_static);
     v("patch_rows", patch_rows);
     v("patch_cols", patch_cols);
     v("min_translation_m", min_translation_m);
-    v("threshold_factor", threshold_factor);
     v("min_parallax_px", min_parallax_px);
     v("smooth_aa", smooth_aa);
     v("max_relative_depth_error", max_relative_depth_error);
-    v("min_edge_angle_deg", min_edge_angle_deg);
-    v("uniqueness", uniqueness);
     v("cross_check_px", cross_check_px);
     v("cross_check_spacing", cross_check_spacing);
     v("match_at_aa_pixels", match_at_aa_pixels);
-    v("refine_on_time_surfaces", refine_on_time_surfaces);
     v("residual_threshold", residual_threshold);
     v("max_inv_depth_stddev", max_inv_depth_stddev);
-    v("max_relative_stddev", max_relative_stddev);
     v("min_depth_m", min_depth_m);
     v("max_depth_m", max_depth_m);
-    v("history_length", history_length);
   }
   Status Validate() const;
 };
 
 /// Per-point Student-t refinement and culling (algorithm.md §4.5, §4.7).
 struct DepthRefinementConfig {
-  int max_iterations = 10;  ///< LM steps; 0 = ESVO2's variance-only evaluation ([ICRA] 10)
-  int patch_width = 15;     ///< residual patch ([ICRA], [ESVO] 15×7; ESVO2 9×5)
-  int patch_height = 7;
   double student_t_nu = 2.182;        ///< ν of the TS residual ([ESVO2], DSEC all versions)
   double student_t_scale = 17.277;    ///< s of the TS residual [TS levels]
   double residual_threshold = 30.0;   ///< cull if cost > threshold² × patch area [TS levels]
@@ -152,9 +112,6 @@ struct DepthRefinementConfig {
 
   template <typename V>
   void VisitFields(V&& v) {
-    v("max_iterations", max_iterations);
-    v("patch_width", patch_width);
-    v("patch_height", patch_height);
     v("student_t_nu", student_t_nu);
     v("student_t_scale", student_t_scale);
     v("residual_threshold", residual_threshold);
@@ -172,14 +129,9 @@ enum class FusionStrategy {
 /// Student-t fusion into the depth grid of the current pose (algorithm.md §4.8–4.9).
 struct FusionConfig {
   FusionStrategy strategy = FusionStrategy::kConstFrames;
-  int max_frames = 5;                 ///< FIFO length in batches ([ESVO] DSEC 5)
-  int max_points = 20000;             ///< FIFO size for const_points
-  int radius = 1;                     ///< 0: 2×2 cells, ≥ 1: 3×3 cells
-  int min_age = 1;                    ///< fusions a point needs to survive cleaning
-  double compatibility_sigmas = 2.0;  ///< |Δρ| < k σ counts as the same surface
-  /// Fuse temporal batches before cleaning, so that their points need confirmation too (aavio;
-  /// the paper is silent; ESVO2 fuses them after cleaning and never cleans them).
-  bool clean_temporal = true;
+  int max_frames = 5;      ///< FIFO length in batches ([ESVO] DSEC 5)
+  int max_points = 20000;  ///< FIFO size for const_points
+  int radius = 1;          ///< 0: 2×2 cells, ≥ 1: 3×3 cells
   /// Maps are published as the reference codes do (algorithm.md §4.11): the bootstrap map, then
   /// (const_frames) only maps of a full FIFO, which are cleaned, or (const_points) maps of a FIFO
   /// more than half full. True (aavio) also gives tracking the maps fused while the FIFO fills
@@ -190,10 +142,6 @@ struct FusionConfig {
   /// or the other kind of stereo): a neighbouring sample of its own batch, spread into a shared
   /// cell, is no confirmation (aavio; the reference codes count every fusion).
   bool confirm_across_batches = false;
-  /// With clean_temporal false, temporal points join a cleaned map unconfirmed. False (aavio)
-  /// keeps those out of tracking's copy of the map (they stay in the depth outputs); true gives
-  /// tracking every point, as ESVO2 does.
-  bool track_unconfirmed_temporal = true;
 
   template <typename V>
   void VisitFields(V&& v) {
@@ -201,10 +149,6 @@ struct FusionConfig {
     v("max_frames", max_frames);
     v("max_points", max_points);
     v("radius", radius);
-    v("min_age", min_age);
-    v("compatibility_sigmas", compatibility_sigmas);
-    v("clean_temporal", clean_temporal);
-    v("track_unconfirmed_temporal", track_unconfirmed_temporal);
     v("publish_while_filling", publish_while_filling);
     v("confirm_across_batches", confirm_across_batches);
   }
@@ -212,20 +156,16 @@ struct FusionConfig {
 };
 
 /// Optional neighbourhood regularisation of the depth grid (algorithm.md §4.10).
+/// [ESVO] rpg: a point is kept when at least 8 of the points within 5 px (and 8 of those within
+/// its 2σ reach) exist.
 struct RegularizationConfig {
-  bool enabled = false;  ///< [ICRA] DSEC off
-  int radius = 20;
-  int min_neighbours = 32;
-  int min_close_neighbours = 32;
+  bool enabled = false;  ///< [ICRA] DSEC off; [ESVO], [ESVO2] rpg on
 
   template <typename V>
   void VisitFields(V&& v) {
     v("enabled", enabled);
-    v("radius", radius);
-    v("min_neighbours", min_neighbours);
-    v("min_close_neighbours", min_close_neighbours);
   }
-  Status Validate() const;
+  Status Validate() const { return Status::Ok(); }
 };
 
 enum class BootstrapMethod {
@@ -236,28 +176,15 @@ enum class BootstrapMethod {
 /// The bootstrap of the first map (algorithm.md §4.12).
 struct BootstrapConfig {
   int min_points = 500;  ///< accept the initial map with at least this many points ([ESVO], [ICRA])
-  int block_size = 11;   ///< StereoSGBM block; P1 = 8·b², P2 = 32·b²
-  int uniqueness_ratio = 11;
-  double inv_depth_stddev = 0.001;  ///< initial σ_ρ of SGM points [1/m]
-  /// aavio: drop SGM points with σ_ρ / ρ above this (the refined points' max_relative_stddev
-  /// rule); 0 = off, as the reference codes. On the DSEC twins it removes a handful of points
-  /// at 1–2 px of disparity (300 m for a 5 m surface) that stay in the first five maps (GT poses:
-  /// relative error 04c 8.9 → 7.0 %, 04e 14.2 → 10.2 %), but the odometry re-initialised on 2 of
-  /// 10 seeds of the 04e twin with it (0 of 10 without), so it is off in the presets.
-  double max_relative_stddev = 0.0;
-  /// sgm: the reference codes. block_matching (aavio): the cycle's own static stereo on every
-  /// edge sample (ZNCC block matching with its checks, refinement and culling); the SGM settings
-  /// above are then unused.
+  /// sgm: the reference codes (StereoSGBM, block 11, σ_ρ 0.001 /m). block_matching (aavio): the
+  /// cycle's own static stereo on every edge sample (ZNCC block matching with its checks,
+  /// refinement and culling).
   BootstrapMethod method = BootstrapMethod::kSgm;
 
   template <typename V>
   void VisitFields(V&& v) {
     v("min_points", min_points);
     v("method", method);
-    v("block_size", block_size);
-    v("uniqueness_ratio", uniqueness_ratio);
-    v("inv_depth_stddev", inv_depth_stddev);
-    v("max_relative_stddev", max_relative_stddev);
   }
   Status Validate() const;
 };
@@ -267,7 +194,6 @@ struct MappingConfig {
   double inv_depth_min = 0.001;  ///< 1/m: farthest depth 1000 m (DSEC configs)
   double inv_depth_max = 0.25;   ///< 1/m: nearest depth 4 m (DSEC configs)
   int max_points = 2500;         ///< edge pixels per cycle ([ICRA] DSEC PROCESS_EVENT_NUM)
-  int min_points = 100;          ///< skip a cycle with fewer edge pixels
   double eta = 0.2;              ///< |g_u|/|g_v| below it → temporal stereo [paper]
   /// aavio: move each edge sample up to this far [px] along the time-surface gradient onto the
   /// newest edge (the negative TS's valley) before matching (edge_snapping.hpp); 0 = off, as the
@@ -286,7 +212,6 @@ struct MappingConfig {
     v("inv_depth_min", inv_depth_min);
     v("inv_depth_max", inv_depth_max);
     v("max_points", max_points);
-    v("min_points", min_points);
     v("eta", eta);
     v("snap_to_edge_px", snap_to_edge_px);
     v("static_stereo", static_stereo);

@@ -4,6 +4,7 @@
 #include <opencv2/calib3d.hpp>
 
 #include "aavio/common/format.hpp"
+#include "aavio/mapping/depth_map.hpp"
 #include "aavio/mapping/static_stereo.hpp"
 
 namespace aavio::mapping {
@@ -16,16 +17,16 @@ Expected<std::vector<DepthPoint>> BootstrapWithSgm(const cv::Mat& ts_left, const
   const DisparityRange range = StaticDisparityRange(stereo, config);
   // OpenCV wants a positive multiple of 16 disparities, starting at 0.
   const int disparities = std::max(16, (range.max + 15) / 16 * 16);
-  const int area = b.block_size * b.block_size;
-  cv::Ptr<cv::StereoSGBM> sgm = cv::StereoSGBM::create(
-      0, disparities, b.block_size, 8 * area, 32 * area, /*disp12MaxDiff=*/-1,
-      /*preFilterCap=*/0, b.uniqueness_ratio, /*speckleWindowSize=*/0, /*speckleRange=*/0,
-      cv::StereoSGBM::MODE_SGBM);
+  constexpr int kBlock = 11, kUniquenessRatio = 11;
+  constexpr int kArea = kBlock * kBlock;
+  cv::Ptr<cv::StereoSGBM> sgm =
+      cv::StereoSGBM::create(0, disparities, kBlock, 8 * kArea, 32 * kArea, /*disp12MaxDiff=*/-1,
+                             /*preFilterCap=*/0, kUniquenessRatio, /*speckleWindowSize=*/0,
+                             /*speckleRange=*/0, cv::StereoSGBM::MODE_SGBM);
   cv::Mat disparity;  // CV_16S, disparity × 16
   sgm->compute(ts_left, ts_right, disparity);
-  const double sigma2 = b.inv_depth_stddev * b.inv_depth_stddev;
+  const double sigma2 = kSgmInvDepthStddev * kSgmInvDepthStddev;
   const double nu = config.depth_refinement.student_t_nu;
-  const double max_relative = b.max_relative_stddev;
   std::vector<DepthPoint> out;
   std::vector<char> taken(static_cast<std::size_t>(stereo.width) * stereo.height, 0);
   for (const Eigen::Vector2f& x : points) {
@@ -38,9 +39,6 @@ Expected<std::vector<DepthPoint>> BootstrapWithSgm(const cv::Mat& ts_left, const
     if (d16 <= 0) continue;  // invalid (negative) or infinitely far
     const double rho = stereo.InvDepthOfDisparity(d16 / 16.0);
     if (rho < config.inv_depth_min || rho > config.inv_depth_max) continue;
-    // As refined points (depth_refinement.max_relative_stddev): with σ_ρ fixed, a point too far
-    // for it (a disparity of a pixel or two) would carry a depth known to tens of %.
-    if (max_relative > 0.0 && b.inv_depth_stddev > max_relative * rho) continue;
     DepthPoint p;
     p.u = static_cast<float>(u);
     p.v = static_cast<float>(v);
@@ -48,7 +46,7 @@ Expected<std::vector<DepthPoint>> BootstrapWithSgm(const cv::Mat& ts_left, const
     p.nu = nu;
     p.s2 = sigma2 * (nu - 2.0) / nu;
     p.residual = 0.0;
-    p.age = config.fusion.min_age;  // survives the first cleanings
+    p.age = kMinAge;  // survives the first cleanings
     out.push_back(p);
   }
   if (static_cast<int>(out.size()) < b.min_points) {

@@ -1,8 +1,8 @@
 #pragma once
 /// The first map (algorithm.md §4.12): semi-global matching (OpenCV StereoSGBM) of the rectified
-/// time-surface pair, kept only at the edge samples, each point with σ_ρ = inv_depth_stddev
-/// (optionally dropped when σ_ρ / ρ > bootstrap.max_relative_stddev).
-/// Accepted when at least bootstrap.min_points points survive.
+/// time-surface pair (block 11, P1 = 8·11², P2 = 32·11², uniqueness ratio 11: the reference
+/// codes'), kept only at the edge samples, each point with σ_ρ = kSgmInvDepthStddev. Accepted
+/// when at least bootstrap.min_points points survive.
 
 #include <opencv2/core/mat.hpp>
 #include <span>
@@ -13,6 +13,9 @@
 #include "aavio/mapping/mapping_config.hpp"
 
 namespace aavio::mapping {
+
+/// σ_ρ given to every SGM point [1/m] ([ESVO], [ICRA code]).
+inline constexpr double kSgmInvDepthStddev = 0.001;
 
 /// SGM points at the given rectified positions; an error says why there are too few.
 Expected<std::vector<DepthPoint>> BootstrapWithSgm(const cv::Mat& ts_left, const cv::Mat& ts_right,

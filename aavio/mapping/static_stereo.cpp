@@ -21,25 +21,25 @@ DisparityRange StaticDisparityRange(const RectifiedStereo& stereo, const Mapping
 namespace {
 
 // Share of the patch below 1 (an empty time surface there).
-bool EmptyPatch(const float* top_left, int stride, int rows, int cols, double max_fraction) {
+bool EmptyPatch(const float* top_left, int stride, int rows, int cols) {
   int low = 0;
   for (int r = 0; r < rows; ++r) {
     for (int c = 0; c < cols; ++c)
       low += top_left[r * stride + c] < 1.0f ? 1 : 0;
   }
-  return low > max_fraction * rows * cols;
+  return low > kEmptyPatchFraction * rows * cols;
 }
 
 // Left-right check (aavio): the right patch at u − d searched along the left row over the same
 // disparity range must find its best match within `tolerance` of d.
 bool LeftRightConsistent(const StaticStereoInput& in, int u, int v, int d,
-                         const DisparityRange& range, int tolerance, const StaticStereoConfig& c) {
-  const int hw = c.patch_width / 2, hh = c.patch_height / 2;
+                         const DisparityRange& range, int tolerance) {
+  const int hw = kPatchWidth / 2, hh = kPatchHeight / 2;
   const int w = in.left.cols;
   const int stride = static_cast<int>(in.left.step1());
   const int x = u - d;  // the right patch's centre column
   NormalizedPatch patch;
-  if (!PreparePatch(in.right.ptr<float>(v - hh) + (x - hw), stride, c.patch_height, c.patch_width,
+  if (!PreparePatch(in.right.ptr<float>(v - hh) + (x - hw), stride, kPatchHeight, kPatchWidth,
                     &patch)) {
     return false;
   }
@@ -59,7 +59,7 @@ bool LeftRightConsistent(const StaticStereoInput& in, int u, int v, int d,
 bool MatchOne(const StaticStereoInput& in, const Eigen::Vector2f& x, const RectifiedStereo& stereo,
               const MappingConfig& config, const DisparityRange& range, Match* out) {
   const StaticStereoConfig& c = config.static_stereo;
-  const int hw = c.patch_width / 2, hh = c.patch_height / 2;
+  const int hw = kPatchWidth / 2, hh = kPatchHeight / 2;
   const int u = static_cast<int>(std::lround(x.x())), v = static_cast<int>(std::lround(x.y()));
   const int w = in.left.cols, h = in.left.rows;
   // The patch may not touch the outermost rows/columns (bilinear access later).
@@ -67,58 +67,35 @@ bool MatchOne(const StaticStereoInput& in, const Eigen::Vector2f& x, const Recti
   if (in.valid_mask.at<std::uint8_t>(v, u) <= 125) return false;
   const int stride = static_cast<int>(in.left.step1());
   const float* left = in.left.ptr<float>(v - hh) + (u - hw);
-  if (EmptyPatch(left, stride, c.patch_height, c.patch_width, c.empty_patch_fraction)) return false;
+  if (EmptyPatch(left, stride, kPatchHeight, kPatchWidth)) return false;
   NormalizedPatch patch;
-  if (!PreparePatch(left, stride, c.patch_height, c.patch_width, &patch)) return false;
+  if (!PreparePatch(left, stride, kPatchHeight, kPatchWidth, &patch)) return false;
   // Disparities whose right patch lies inside the image.
   const int d_lo = range.min, d_hi = std::min(range.max, u - hw - 1);
   if (d_hi < d_lo) return false;
-  const float* right_row = in.right.ptr<float>(v - hh);
-  auto cost = [&](int d) { return ZnccCost(patch, right_row + (u - d - hw), stride); };
-  const double theta = c.zncc_threshold;
-  const int step = std::max(1, c.step);
+  // All disparities at once: position j of the row search is disparity d_hi − j.
+  const int count = d_hi - d_lo + 1;
+  thread_local std::vector<double> along_row, costs;
+  along_row.resize(static_cast<std::size_t>(count));
+  ZnccCostsAlongRow(patch, in.right.ptr<float>(v - hh) + (u - d_hi - hw), stride, count,
+                    along_row.data());
+  costs.resize(static_cast<std::size_t>(count));
   double best = 1.0;
   int best_d = -1;
-  thread_local std::vector<double> costs;
-  if (step == 1) {
-    // All disparities at once: position j of the row search is disparity d_hi − j.
-    const int count = d_hi - d_lo + 1;
-    thread_local std::vector<double> along_row;
-    along_row.resize(static_cast<std::size_t>(count));
-    ZnccCostsAlongRow(patch, right_row + (u - d_hi - hw), stride, count, along_row.data());
-    costs.resize(static_cast<std::size_t>(count));
-    for (int d = d_lo; d <= d_hi; ++d) {
-      const double e = along_row[static_cast<std::size_t>(d_hi - d)];
-      costs[static_cast<std::size_t>(d - d_lo)] = e;
-      if (e < best) best = e, best_d = d;
-    }
-    // Uniqueness: no other local minimum (beyond ±2 px) may come close to the best.
-    if (c.uniqueness > 0.0 && best_d >= 0 &&
-        HasRivalMinimum(costs.data(), count, best_d - d_lo, c.uniqueness)) {
-      return false;
-    }
-  } else {
-    // Coarse pass; every coarse disparity within 1.035θ marks its ±(step − 1) neighbours.
-    std::vector<char> marked(static_cast<std::size_t>(d_hi - d_lo + 1), 0);
-    double coarse_best = 1.0;
-    for (int d = d_lo; d <= d_hi; d += step) {
-      const double e = cost(d);
-      coarse_best = std::min(coarse_best, e);
-      if (e <= 1.035 * theta) {
-        for (int k = std::max(d_lo, d - step + 1); k <= std::min(d_hi, d + step - 1); ++k)
-          marked[static_cast<std::size_t>(k - d_lo)] = 1;
-      }
-    }
-    if (coarse_best >= 1.03 * theta) return false;
-    for (int d = d_lo; d <= d_hi; ++d) {
-      if (!marked[static_cast<std::size_t>(d - d_lo)]) continue;
-      const double e = cost(d);
-      if (e < best) best = e, best_d = d;
-    }
+  for (int d = d_lo; d <= d_hi; ++d) {
+    const double e = along_row[static_cast<std::size_t>(d_hi - d)];
+    costs[static_cast<std::size_t>(d - d_lo)] = e;
+    if (e < best) best = e, best_d = d;
   }
+  // Uniqueness: no other local minimum (beyond ±2 px) may come close to the best.
+  if (c.uniqueness > 0.0 && best_d >= 0 &&
+      HasRivalMinimum(costs.data(), count, best_d - d_lo, c.uniqueness)) {
+    return false;
+  }
+  const double theta = c.zncc_threshold;
   if (best_d < 0 || best > 1.02 * theta) return false;
   if (c.left_right_tolerance_px >= 0 &&
-      !LeftRightConsistent(in, u, v, best_d, range, c.left_right_tolerance_px, c)) {
+      !LeftRightConsistent(in, u, v, best_d, range, c.left_right_tolerance_px)) {
     return false;
   }
   const double rho = stereo.InvDepthOfDisparity(best_d);

@@ -1,9 +1,8 @@
 #pragma once
 /// Static stereo: left/right block matching of time surfaces along rectified rows
 /// (algorithm.md §4.3). For each edge pixel the left patch (15×7) is compared with right patches
-/// at every disparity of the range the depth range allows, by ½(1 − ZNCC); with a coarse step
-/// the disparities near good coarse costs are then searched one by one (ICRA/ESVO2 tolerances
-/// 1.035θ / 1.03θ / 1.02θ).
+/// at every disparity of the range the depth range allows, by ½(1 − ZNCC); the best is accepted
+/// below 1.02θ (the reference codes' tolerance).
 
 #include <opencv2/core/mat.hpp>
 #include <span>
@@ -13,6 +12,11 @@
 #include "aavio/mapping/rectified_stereo.hpp"
 
 namespace aavio::mapping {
+
+/// The matching patch of static stereo and of depth refinement ([ESVO], [ICRA code]: 15×7).
+inline constexpr int kPatchWidth = 15, kPatchHeight = 7;
+/// A left patch with more than this share of empty time surface (TS < 1) is not matched.
+inline constexpr double kEmptyPatchFraction = 0.95;
 
 struct DisparityRange {
   int min = 0, max = 0;

@@ -57,14 +57,11 @@ TEST(StaticStereo, FindsTheShiftOfATexture) {
   for (int v = 20; v < 100; v += 9)
     for (int u = 40; u < 140; u += 11)
       points.emplace_back(u, v);
-  for (const int step : {1, 3}) {
-    config.static_stereo.step = step;
-    const std::vector<Match> matches = MatchStatic({left, right, valid}, points, stereo, config);
-    EXPECT_GT(matches.size(), points.size() * 9 / 10) << "step " << step;
-    for (const Match& m : matches) {
-      EXPECT_NEAR(stereo.Disparity(m.rho), 12.0, 1e-9);
-      EXPECT_LT(m.cost, 0.01);
-    }
+  const std::vector<Match> matches = MatchStatic({left, right, valid}, points, stereo, config);
+  EXPECT_GT(matches.size(), points.size() * 9 / 10);
+  for (const Match& m : matches) {
+    EXPECT_NEAR(stereo.Disparity(m.rho), 12.0, 1e-9);
+    EXPECT_LT(m.cost, 0.01);
   }
   // A flat right image matches nothing.
   const cv::Mat flat(120, 160, CV_32FC1, cv::Scalar(50));
@@ -147,9 +144,8 @@ struct StripedPlane {
       for (int u = 40; u < 120; u += 13)
         points.emplace_back(u, v);
   }
-  std::vector<Match> Matches(const MappingConfig& config, const cv::Mat* grad_u = nullptr,
-                             const cv::Mat* grad_v = nullptr) const {
-    return MatchTemporal({aa_now, aa_past, T_past_now, grad_u, grad_v}, points, stereo, config);
+  std::vector<Match> Matches(const MappingConfig& config) const {
+    return MatchTemporal({aa_now, aa_past, T_past_now}, points, stereo, config);
   }
 };
 
@@ -161,37 +157,6 @@ TEST(TemporalStereo, MatchesHorizontalEdgesAlongTheEpipolarSegment) {
     EXPECT_EQ(m.kind, StereoKind::kTemporal);
     EXPECT_NEAR(1.0 / m.rho, 10.0, 10.0 * 0.5 / scene.shift);  // within half a pixel of parallax
   }
-}
-
-// The edge-angle test keeps an edge the segment crosses and drops one the segment runs along.
-TEST(TemporalStereo, EdgeAngleTestDropsEdgesAlongTheSegment) {
-  const StripedPlane scene;
-  MappingConfig config = Config();
-  const cv::Mat zero(120, 160, CV_32FC1, cv::Scalar(0.0f));
-  const cv::Mat one(120, 160, CV_32FC1, cv::Scalar(1.0f));
-  const std::size_t all = scene.Matches(config).size();
-  ASSERT_GT(all, scene.points.size() / 2);
-  config.temporal_stereo.min_edge_angle_deg = 30.0;
-  // Horizontal edges (gradient along v): the vertical segment crosses them at 90°.
-  EXPECT_EQ(scene.Matches(config, &zero, &one).size(), all);
-  // Vertical edges (gradient along u): the segment runs along them.
-  EXPECT_TRUE(scene.Matches(config, &one, &zero).empty());
-  // A gradient along the diagonal: the segment crosses its edge at 45°.
-  config.temporal_stereo.min_edge_angle_deg = 40.0;
-  EXPECT_EQ(scene.Matches(config, &one, &one).size(), all);
-  config.temporal_stereo.min_edge_angle_deg = 50.0;
-  EXPECT_TRUE(scene.Matches(config, &one, &one).empty());
-}
-
-// Bare stripes repeat along the segment: uniqueness rejects the matches their period makes
-// ambiguous.
-TEST(TemporalStereo, UniquenessRejectsRepeatedStructure) {
-  const StripedPlane scene(/*bare=*/true);
-  MappingConfig config = Config();
-  config.static_stereo.empty_patch_fraction = 1.0;
-  ASSERT_FALSE(scene.Matches(config).empty());
-  config.temporal_stereo.uniqueness = 0.1;
-  EXPECT_TRUE(scene.Matches(config).empty());
 }
 
 // The cross-check searches a second, older view (0.6 m away) independently: one consistent with
@@ -239,14 +204,6 @@ TEST(TemporalStereo, StatsCountWhereEachCandidateIsLost) {
   ASSERT_GT(base.matched, static_cast<int>(scene.points.size()) / 2);
   EXPECT_EQ(base.ill_conditioned + base.check_rejected + base.out_of_range, 0);
 
-  // Vertical edges: the vertical segment runs along them, nothing to search.
-  const cv::Mat zero(120, 160, CV_32FC1, cv::Scalar(0.0f));
-  const cv::Mat one(120, 160, CV_32FC1, cv::Scalar(1.0f));
-  config.temporal_stereo.min_edge_angle_deg = 30.0;
-  EXPECT_EQ(stats_of({scene.aa_now, scene.aa_past, scene.T_past_now, &one, &zero}).no_segment,
-            static_cast<int>(scene.points.size()));
-  config = Config();
-
   // A conditioning gate no parallax can pass: the matches become ill-conditioned.
   config.temporal_stereo.max_relative_depth_error = 1e-6;
   const TemporalMatchStats strict = stats_of(plain);
@@ -265,18 +222,6 @@ TEST(TemporalStereo, StatsCountWhereEachCandidateIsLost) {
   const TemporalMatchStats rejected = stats_of(checked);
   EXPECT_EQ(rejected.matched, 0);
   EXPECT_EQ(rejected.check_rejected, base.matched);
-  config = Config();
-
-  // Bare stripes repeat along the segment: with the uniqueness test no match is left.
-  const StripedPlane bare(/*bare=*/true);
-  config.static_stereo.empty_patch_fraction = 1.0;
-  const TemporalStereoInput bare_input{bare.aa_now, bare.aa_past, bare.T_past_now};
-  const TemporalMatchStats ambiguous = stats_of(bare_input);
-  ASSERT_GT(ambiguous.matched, 0);
-  config.temporal_stereo.uniqueness = 0.1;
-  const TemporalMatchStats unique = stats_of(bare_input);
-  EXPECT_EQ(unique.matched, 0);
-  EXPECT_EQ(unique.no_match, ambiguous.no_match + ambiguous.matched);
 }
 
 // Why the check partner is not at twice the first baseline (cross_check_spacing): bare stripes
@@ -288,7 +233,6 @@ TEST(TemporalStereo, StatsCountWhereEachCandidateIsLost) {
 TEST(TemporalStereo, CrossCheckAtTwiceTheBaselineConfirmsAPeriodicMismatch) {
   const StripedPlane scene(/*bare=*/true);
   MappingConfig config = Config();
-  config.static_stereo.empty_patch_fraction = 1.0;
   config.inv_depth_min = 1.0 / 5.9;
   config.inv_depth_max = 1.0 / 5.2;
   std::vector<Eigen::Vector2f> on_stripes;  // patches centred on a stripe's first row
@@ -338,57 +282,37 @@ TEST(DepthRefinement, RecoversSubPixelDisparityAndItsUncertainty) {
     EXPECT_GT(p.variance(), 0.0);
     EXPECT_LT(std::sqrt(p.variance()), 0.01);  // a fraction of a pixel of disparity
   }
-  // max_iterations = 0: ρ stays, only σ is evaluated (ESVO2).
-  MappingConfig variance_only = config;
-  variance_only.depth_refinement.max_iterations = 0;
-  const std::vector<DepthPoint> kept =
-      RefineDepths({left, right, nullptr, nullptr, {}}, matches, stereo, variance_only);
-  ASSERT_FALSE(kept.empty());
-  EXPECT_DOUBLE_EQ(kept[0].rho, matches[0].rho);
 }
 
-// temporal_stereo.max_relative_stddev culls temporal estimates by σ_ρ / ρ in place of
-// depth_refinement.max_relative_stddev (≤ 0: the latter).
-TEST(DepthRefinement, TemporalEstimatesHaveTheirOwnRelativeStddevCulling) {
+// depth_refinement.max_relative_stddev culls temporal estimates too; temporal_stereo's
+// residual_threshold and max_inv_depth_stddev, the AA residual's, cull them in place of
+// depth_refinement's.
+TEST(DepthRefinement, TemporalEstimatesAreCulledByTheirOwnThresholds) {
   const StripedPlane scene;
   const std::vector<Match> matches = scene.Matches(Config());
   ASSERT_GT(matches.size(), scene.points.size() / 2);
   const cv::Mat none(120, 160, CV_32FC1, cv::Scalar(0.0f));
-  auto refined = [&](double refinement, double temporal) {
-    MappingConfig config = Config();
-    config.depth_refinement.max_relative_stddev = refinement;
-    config.temporal_stereo.max_relative_stddev = temporal;
+  auto refined = [&](const MappingConfig& config) {
     return RefineDepths({none, none, &scene.aa_now, &scene.aa_past, scene.T_past_now}, matches,
                         scene.stereo, config)
         .size();
   };
-  const std::size_t all = refined(0.0, 0.0);
+  const std::size_t all = refined(Config());
   ASSERT_GT(all, matches.size() / 2);
-  EXPECT_EQ(refined(1e-6, 0.0), 0u);   // the refinement's threshold applies to both kinds
-  EXPECT_EQ(refined(1e-6, 1.0), all);  // ... unless temporal estimates have their own
-  EXPECT_EQ(refined(0.0, 1e-6), 0u);
-}
-
-// temporal_stereo.residual_threshold and max_inv_depth_stddev are the AA residual's: they cull
-// temporal estimates refined on the AA maps, not those refined on the time surfaces (whose
-// residual is the static one's kind).
-TEST(DepthRefinement, AaThresholdsOnlyForEstimatesRefinedOnAaMaps) {
-  const StripedPlane scene;
-  const std::vector<Match> matches = scene.Matches(Config());
-  const cv::Mat none(120, 160, CV_32FC1, cv::Scalar(0.0f));
+  MappingConfig relative = Config();
+  relative.depth_refinement.max_relative_stddev = 1e-6;
+  EXPECT_EQ(refined(relative), 0u);
   for (const bool tight_stddev : {false, true}) {
-    auto refined = [&](bool on_time_surfaces) {
-      MappingConfig config = Config();
-      (tight_stddev ? config.temporal_stereo.max_inv_depth_stddev
-                    : config.temporal_stereo.residual_threshold) = 1e-9;
-      config.temporal_stereo.refine_on_time_surfaces = on_time_surfaces;
-      // The scene's AA maps stand for the time surfaces too: same residuals, other thresholds.
-      return RefineDepths({none, none, &scene.aa_now, &scene.aa_past, scene.T_past_now}, matches,
-                          scene.stereo, config)
-          .size();
-    };
-    EXPECT_EQ(refined(false), 0u) << tight_stddev;
-    EXPECT_GT(refined(true), matches.size() / 2) << tight_stddev;
+    MappingConfig config = Config();
+    (tight_stddev ? config.temporal_stereo.max_inv_depth_stddev
+                  : config.temporal_stereo.residual_threshold) = 1e-9;
+    EXPECT_EQ(refined(config), 0u) << tight_stddev;
+    // A tight refinement threshold does not apply where temporal_stereo has its own.
+    (tight_stddev ? config.depth_refinement.max_inv_depth_stddev
+                  : config.depth_refinement.residual_threshold) = 1e-9;
+    (tight_stddev ? config.temporal_stereo.max_inv_depth_stddev
+                  : config.temporal_stereo.residual_threshold) = 1e9;
+    EXPECT_EQ(refined(config), all) << tight_stddev;
   }
 }
 

@@ -10,6 +10,7 @@
 #include <limits>
 #include <vector>
 
+#include "aavio/mapping/static_stereo.hpp"
 #include "aavio/mapping/zncc.hpp"
 
 namespace aavio::mapping {
@@ -66,7 +67,6 @@ enum class Outcome : std::uint8_t {
 
 Outcome SearchSegment(const NormalizedPatch& patch, const cv::Mat& aa_past,
                       const geometry::RigidTransform& T_past_now, const Eigen::Vector2f& x,
-                      const int u, const int v, const TemporalStereoInput& in,
                       const RectifiedStereo& stereo, const MappingConfig& config, double rho_lo,
                       double rho_hi, SegmentMatch* out) {
   const TemporalStereoConfig& t = config.temporal_stereo;
@@ -83,14 +83,6 @@ Outcome SearchSegment(const NormalizedPatch& patch, const cv::Mat& aa_past,
   const double length = std::max(std::abs(du), std::abs(dv));
   // Too little parallax over the whole depth range: depth would be mostly quantisation noise.
   if (length < t.min_parallax_px) return Outcome::kNoSegment;
-  // The edge (perpendicular to the TS gradient) must cross the segment: sin of the angle between
-  // them = |segment · gradient| / (|segment| |gradient|).
-  if (t.min_edge_angle_deg > 0.0 && in.grad_u != nullptr && in.grad_v != nullptr) {
-    const double gu = in.grad_u->at<float>(v, u), gv = in.grad_v->at<float>(v, u);
-    const double norms = std::hypot(du, dv) * std::hypot(gu, gv);
-    if (!(std::abs(du * gu + dv * gv) >= std::sin(t.min_edge_angle_deg * kDegToRad) * norms))
-      return Outcome::kNoSegment;
-  }
   // One candidate per pixel along the segment's major axis, at whole pixels of it (so the steps
   // are uniform and the parabola below is unbiased); the other coordinate is rounded.
   const bool along_u = std::abs(du) >= std::abs(dv);
@@ -113,9 +105,8 @@ Outcome SearchSegment(const NormalizedPatch& patch, const cv::Mat& aa_past,
   }
   if (best_k < 0) return Outcome::kNoSegment;  // the segment lies outside the image
   const double best = costs[static_cast<std::size_t>(best_k)];
-  if (best >= t.threshold_factor * config.static_stereo.zncc_threshold) return Outcome::kNoMatch;
-  if (t.uniqueness > 0.0 && HasRivalMinimum(costs.data(), steps + 1, best_k, t.uniqueness))
-    return Outcome::kNoMatch;
+  // [ICRA code]: a wide patch on AA maps is accepted below 3θ.
+  if (best >= 3.0 * config.static_stereo.zncc_threshold) return Outcome::kNoMatch;
   // Sub-sample position along the segment: the vertex of the parabola through the best cost and
   // its neighbours.
   double k_star = best_k;
@@ -158,14 +149,13 @@ Outcome MatchOne(const TemporalStereoInput& in, const Eigen::Vector2f& x,
     for (int c = 0; c < t.patch_cols; ++c)
       empty += source[r * stride + c] < 1.0f ? 1 : 0;
   }
-  if (empty > config.static_stereo.empty_patch_fraction * t.patch_rows * t.patch_cols)
-    return Outcome::kNoSegment;
+  if (empty > kEmptyPatchFraction * t.patch_rows * t.patch_cols) return Outcome::kNoSegment;
   NormalizedPatch patch;
   if (!PreparePatch(source, stride, t.patch_rows, t.patch_cols, &patch)) return Outcome::kNoSegment;
 
   SegmentMatch m;
-  const Outcome found = SearchSegment(patch, in.aa_past, in.T_past_now, x, u, v, in, stereo, config,
-                                      rho_lo, rho_hi, &m);
+  const Outcome found =
+      SearchSegment(patch, in.aa_past, in.T_past_now, x, stereo, config, rho_lo, rho_hi, &m);
   if (found != Outcome::kMatched) return found;
   // Conditioning: one pixel of matching error may not move the depth by more than
   // max_relative_depth_error (parallax too small for this depth otherwise).
@@ -177,8 +167,8 @@ Outcome MatchOne(const TemporalStereoInput& in, const Eigen::Vector2f& x,
     // depth within cross_check_px pixels of matching error (summed over both searches); then
     // the two are averaged in inverse depth, weighted by their per-pixel precision.
     SegmentMatch c;
-    if (SearchSegment(patch, *in.aa_check, *in.T_check_now, x, u, v, in, stereo, config, rho_lo,
-                      rho_hi, &c) != Outcome::kMatched) {
+    if (SearchSegment(patch, *in.aa_check, *in.T_check_now, x, stereo, config, rho_lo, rho_hi,
+                      &c) != Outcome::kMatched) {
       return Outcome::kCheckRejected;
     }
     const double d_rho_m = m.dz_per_px / (m.z * m.z), d_rho_c = c.dz_per_px / (c.z * c.z);

@@ -3,10 +3,10 @@
 /// AA map of an earlier observation, along the exact epipolar segment between the projections of
 /// the nearest and farthest allowed depth (not the reference code's fixed −10…70 px), with a
 /// wide flat patch (5 rows × 31 columns) suited to edges parallel to the baseline; the best match
-/// under threshold_factor·θ is triangulated (midpoint of the two rays) and gated by depth.
-/// aavio's optional tests: the edge must cross the segment at min_edge_angle_deg or more, the
-/// best match must be unique along it, and an independent search in a second, older partner must
-/// find the same depth (cross_check_px; the two are then averaged).
+/// under 3θ is triangulated (midpoint of the two rays) and gated by depth. aavio's optional
+/// tests: enough parallax (min_parallax_px), a well-conditioned depth (max_relative_depth_error),
+/// and an independent search in a second, older partner that finds the same depth
+/// (cross_check_px; the two are then averaged).
 
 #include <opencv2/core/mat.hpp>
 #include <span>
@@ -22,9 +22,6 @@ struct TemporalStereoInput {
   const cv::Mat& aa_now;   ///< CV_32FC1 AA map of the current observation
   const cv::Mat& aa_past;  ///< CV_32FC1 AA map of the partner observation
   const geometry::RigidTransform& T_past_now;
-  /// Gradient of the current negative TS (CV_32FC1), for the edge-angle test; null = no test.
-  const cv::Mat* grad_u = nullptr;
-  const cv::Mat* grad_v = nullptr;
   /// A second, older partner for the cross-check (CV_32FC1 AA map and its pose); null = none.
   const cv::Mat* aa_check = nullptr;
   const geometry::RigidTransform* T_check_now = nullptr;
@@ -35,10 +32,10 @@ struct TemporalStereoInput {
 struct TemporalMatchStats {
   int matched = 0;
   /// Nothing to search: the patch is (almost) empty or leaves the image, the segment has less
-  /// than `min_parallax_px` of parallax, or the edge runs along it (`min_edge_angle_deg`).
+  /// than `min_parallax_px` of parallax.
   int no_segment = 0;
-  /// No candidate under the cost threshold (`threshold_factor`), a rival minimum
-  /// (`uniqueness`), or a triangulated depth outside the gate (`min_depth_m`…`max_depth_m`).
+  /// No candidate under the cost threshold (3θ), or a triangulated depth outside the gate
+  /// (`min_depth_m`…`max_depth_m`).
   int no_match = 0;
   /// One pixel of matching error would move the depth by more than `max_relative_depth_error`.
   int ill_conditioned = 0;

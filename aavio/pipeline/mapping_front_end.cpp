@@ -73,9 +73,8 @@ Status MappingFrontEnd::Tick(TimeNs t_ns) {
   auto light = std::make_shared<events::Observation>();
   light->t_ns = obs->t_ns;
   light->aa_map = obs->aa_map;
-  if (config_.mapping.temporal_stereo.refine_on_time_surfaces) light->ts_left = obs->ts_left;
   history_.push_back({std::move(light), *pose});
-  if (static_cast<int>(history_.size()) > config_.mapping.temporal_stereo.history_length)
+  if (static_cast<int>(history_.size()) > mapping::kTemporalHistoryLength)
     history_.erase(history_.begin());
   return Status::Ok();
 }

@@ -53,8 +53,7 @@ Status Odometry::CollectCycle(OdometryTick* tick, bool wait) {
   return Status::Ok();
 }
 
-Status Odometry::Process(std::span<const events::Event> left,
-                         std::span<const events::Event> right,
+Status Odometry::Process(std::span<const events::Event> left, std::span<const events::Event> right,
                          std::span<const imu::ImuSample> imu, TimeNs t_end_ns) {
   const auto start = std::chrono::steady_clock::now();
   AAVIO_RETURN_IF_ERROR(builder_.AddEvents(events::Camera::kLeft, left));
@@ -76,7 +75,7 @@ void Odometry::PublishToTracking(const mapping::LocalMapPtr& map) {
   }
   auto tracking_map = std::make_shared<tracking::TrackingMap>();
   tracking_map->T_world_ref = map->T_world_ref;
-  tracking_map->points_world = mapping::PointsForTracking(*map, config_.mapping.fusion);
+  tracking_map->points_world = map->points_world;
   tracker_.SetMap(std::move(tracking_map));
 }
 
@@ -180,10 +179,8 @@ Status Odometry::Tick(TimeNs t_ns) {
     auto light = std::make_shared<events::Observation>();
     light->t_ns = obs->t_ns;
     light->aa_map = obs->aa_map;
-    // The partner's time surface for temporal_stereo.refine_on_time_surfaces.
-    if (config_.mapping.temporal_stereo.refine_on_time_surfaces) light->ts_left = obs->ts_left;
     history_.push_back({std::move(light), tracked.T_world_cur});
-    if (static_cast<int>(history_.size()) > config_.mapping.temporal_stereo.history_length)
+    if (static_cast<int>(history_.size()) > mapping::kTemporalHistoryLength)
       history_.erase(history_.begin());
   }
   if (on_tick) on_tick(tick);

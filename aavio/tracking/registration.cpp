@@ -13,6 +13,8 @@ namespace {
 
 constexpr double kMaxCayleyStep = 0.02;       // ≈ 2.3° per LM step
 constexpr double kMaxTranslationStep = 0.05;  // m per LM step
+// LM stops on a relative cost reduction or a relative step below these ([ESVO]).
+constexpr double kFunctionTolerance = 1e-3, kStepTolerance = 1e-3;
 
 // Bilinear interpolation weights at (u, v), shared by the images sampled there; the caller
 // checks the bounds.
@@ -212,7 +214,7 @@ RegistrationResult Registration::Solve(
       if (trial_cost < cost) {
         result.T_ref_cur = trial;
         lambda = std::max(1e-7, lambda * 0.1);
-        *small = (cost - trial_cost) / cost < config_.function_tolerance;
+        *small = (cost - trial_cost) / cost < kFunctionTolerance;
         *step = theta;
         return true;
       }
@@ -230,7 +232,7 @@ RegistrationResult Registration::Solve(
     result.iterations = iteration + 1;
     if (!accepted) {
       if (batches == 1) break;  // no progress possible on the only batch
-    } else if (theta.norm() < config_.step_tolerance * 1e-2) {
+    } else if (theta.norm() < kStepTolerance * 1e-2) {
       break;
     }
   }

@@ -12,8 +12,6 @@ Status TrackingConfig::Validate() const {
       .InRange("max_iterations", max_iterations, 1, 1000)
       .InRange("polish_iterations", polish_iterations, 0, 100)
       .Positive("huber_threshold", huber_threshold)
-      .Positive("function_tolerance", function_tolerance)
-      .Positive("step_tolerance", step_tolerance)
       .Positive("max_correction_deg", max_correction_deg)
       .Positive("max_correction_m", max_correction_m)
       .InRange("velocity_gain", velocity_gain, 0.0, 1.0)

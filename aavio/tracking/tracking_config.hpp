@@ -7,15 +7,13 @@
 namespace aavio::tracking {
 
 struct TrackingConfig {
-  int max_points = 2000;             ///< map points sampled per registration problem [paper ~2k]
-  int batch_size = 300;              ///< points per LM step (≥ max_points: all points, plain LM)
-  int min_map_points = 300;          ///< fewer map points than this: no tracking (kNoMap)
-  int max_iterations = 10;           ///< LM steps per tick ([ICRA], [ESVO]; ESVO2 rpg 20)
+  int max_points = 2000;     ///< map points sampled per registration problem [paper ~2k]
+  int batch_size = 300;      ///< points per LM step (≥ max_points: all points, plain LM)
+  int min_map_points = 300;  ///< fewer map points than this: no tracking (kNoMap)
+  int max_iterations = 10;   ///< LM steps per tick ([ICRA], [ESVO]; ESVO2 rpg 20)
   /// aavio: LM steps on all points after the mini-batches (0 = the reference)
   int polish_iterations = 0;
-  double huber_threshold = 50.0;     ///< robust loss threshold [TS levels]
-  double function_tolerance = 1e-3;  ///< stop on relative cost reduction below it
-  double step_tolerance = 1e-3;      ///< stop on relative step below it
+  double huber_threshold = 50.0;  ///< robust loss threshold [TS levels]
   /// Registration results further than this from the prediction count as divergence (aavio; the
   /// reference has no such test): rotation [deg] and translation [m] per tick.
   double max_correction_deg = 3.0;
@@ -48,8 +46,6 @@ struct TrackingConfig {
     v("max_iterations", max_iterations);
     v("polish_iterations", polish_iterations);
     v("huber_threshold", huber_threshold);
-    v("function_tolerance", function_tolerance);
-    v("step_tolerance", step_tolerance);
     v("max_correction_deg", max_correction_deg);
     v("max_correction_m", max_correction_m);
     v("velocity_gain", velocity_gain);

@@ -170,11 +170,20 @@ TEST(Cli, OverlaysApplyOnTopOfThePreset) {
     ++count;
   }
   EXPECT_GE(count, 1);
-  const Result r = RunAavio(
-      {"config", "--preset", "dsec", "--config", (overlays / "more_temporal_depth.yaml").string()});
-  EXPECT_NE(r.out.find("    refine_on_time_surfaces: true\n"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("    track_unconfirmed_temporal: false\n"), std::string::npos);
+  const Result r =
+      RunAavio({"config", "--preset", "dsec", "--config", (overlays / "esvo.yaml").string()});
+  EXPECT_NE(r.out.find("  mode: newest_events\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("    enabled: false\n"), std::string::npos);
   EXPECT_NE(r.out.find("  eta: 0.2\n"), std::string::npos);  // the preset's, untouched
+  // By name: the overlay embedded in the binary, the same configuration.
+  const Result by_name = RunAavio({"config", "--preset", "dsec", "--config", "esvo"});
+  EXPECT_EQ(by_name.code, kExitOk) << by_name.err;
+  auto body = [](const std::string& out) { return out.substr(out.find("\n\npipeline:")); };
+  EXPECT_EQ(body(by_name.out), body(r.out));
+  EXPECT_NE(by_name.out.find("# from: preset dsec + esvo\n"), std::string::npos);
+  const Result unknown = RunAavio({"config", "--config", "esvo2"});
+  EXPECT_EQ(unknown.code, kExitError);
+  EXPECT_NE(unknown.err.find("esvo2"), std::string::npos) << unknown.err;
 }
 
 TEST(Cli, ConfigErrorsAreClear) {

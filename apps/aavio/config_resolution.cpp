@@ -1,6 +1,8 @@
 #include "config_resolution.hpp"
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
+#include <filesystem>
 
 #include "aavio/io/config_yaml.hpp"
 #include "aavio/io/presets.hpp"
@@ -12,7 +14,12 @@ void AddConfigOptions(CLI::App& sub, ConfigSources* sources) {
   for (const std::string& n : io::PresetNames())
     names += (names.empty() ? "" : ", ") + n;
   sub.add_option("--preset", sources->preset, "Parameter preset: " + names);
-  sub.add_option("--config", sources->files, "YAML file(s) of parameters, applied in order")
+  std::string overlays;
+  for (const std::string& n : io::OverlayNames())
+    overlays += (overlays.empty() ? "" : ", ") + n;
+  sub.add_option(
+         "--config", sources->files,
+         "YAML file(s) of parameters, or shipped overlays (" + overlays + "), applied in order")
       ->type_name("FILE");
   sub.add_option("--set", sources->overrides, "Override one parameter, e.g. --set mapping.eta=0.1")
       ->type_name("KEY=VALUE");
@@ -25,8 +32,13 @@ Expected<pipeline::OdometryConfig> ResolveOdometryConfig(const ConfigSources& so
     if (!entries) return entries.status();
     AAVIO_RETURN_IF_ERROR(ApplyConfigEntries(*entries, &config));
   }
+  const std::vector<std::string> overlays = io::OverlayNames();
   for (const std::string& file : sources.files) {
-    Expected<std::vector<ConfigEntry>> entries = io::ReadConfigYaml(file);
+    // A shipped overlay's name, unless a file of that name is here.
+    const bool overlay = std::find(overlays.begin(), overlays.end(), file) != overlays.end() &&
+                         !std::filesystem::exists(file);
+    Expected<std::vector<ConfigEntry>> entries =
+        overlay ? io::OverlayEntries(file) : io::ReadConfigYaml(file);
     if (!entries) return entries.status();
     AAVIO_RETURN_IF_ERROR(ApplyConfigEntries(*entries, &config));
   }

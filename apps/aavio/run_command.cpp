@@ -70,25 +70,9 @@ Expected<geometry::PoseBuffer> GroundTruthPoses(const io::SequenceDescription& d
 }
 
 std::atomic<bool> g_interrupted{false};  // Ctrl-C during a run: stop and write what is done
-extern "C" void OnInterrupt(int) { g_interrupted.store(true); }
-
-// The ESVO-like configuration (ESVO's newest-event selection of 10k points, static stereo only,
-// no IMU prior, its zero-motion prediction and 10 LM steps, none of aavio's additions), so that
-// the paper's comparisons run on the same data; later --set still apply.
-const std::vector<std::string> kEsvoOverrides = {
-    "edge_sampling.mode=newest_events",
-    "edge_sampling.num_points=10000",
-    "mapping.max_points=10000",
-    "mapping.temporal_stereo.enabled=false",
-    "imu.use_gyro_prior=false",
-    "mapping.snap_to_edge_px=0",
-    "tracking.max_iterations=10",
-    "tracking.polish_iterations=0",
-    "tracking.velocity_gain=0",
-    "mapping.static_stereo.uniqueness=0",
-    "mapping.static_stereo.left_right_tolerance_px=-1",
-    "mapping.static_stereo.out_of_view_radius_px=0",
-};
+extern "C" void OnInterrupt(int) {
+  g_interrupted.store(true);
+}
 
 // No preset named: the one for this camera's resolution (every mode of `aavio run`).
 void ChoosePreset(const OpenedSequence& opened, RunOptions* options, Context& ctx) {
@@ -102,10 +86,9 @@ void ChoosePreset(const OpenedSequence& opened, RunOptions* options, Context& ct
 }
 
 Status RunFull(RunOptions options, OpenedSequence& opened, Context& ctx) {
-  if (options.esvo) {
-    options.config.overrides.insert(options.config.overrides.begin(), kEsvoOverrides.begin(),
-                                    kEsvoOverrides.end());
-  }
+  // The ESVO-like mode is the shipped overlay configs/overlays/esvo.yaml, after the user's
+  // files; later --set still apply.
+  if (options.esvo) options.config.files.push_back("esvo");
   if (options.real_time) options.config.overrides.push_back("pipeline.real_time=true");
   Expected<pipeline::OdometryConfig> config = ResolveOdometryConfig(options.config);
   if (!config) return config.status();
@@ -306,7 +289,8 @@ Status Run(RunOptions options, Context& ctx) {
 void RegisterRun(CLI::App& app, Context& ctx) {
   auto options = std::make_shared<RunOptions>();
   CLI::App* sub = app.add_subcommand(
-      "run", "Run the odometry on a sequence (or mapping only: --gt-poses, tracking only: --gt-map)");
+      "run",
+      "Run the odometry on a sequence (or mapping only: --gt-poses, tracking only: --gt-map)");
   sub->add_option("sequence", options->sequence, "sequence.yaml, DSEC folder or bag")->required();
   sub->add_option("--out", options->out_dir, "Output folder")->required();
   sub->add_option("--calib", options->calibration, "Calibration, if the sequence names none");
