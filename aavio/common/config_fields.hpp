@@ -10,7 +10,7 @@
 ///     Status Validate() const;
 ///   };
 ///
-/// A member that itself has VisitFields() is a nested section ("mapping.static_stereo.step").
+/// A member that itself has VisitFields() is a nested section ("mapping.fusion.radius").
 /// Supported field types: bool, int, int64, double, std::string, enums with an EnumNames
 /// specialisation, and std::array<double, N>.
 

@@ -11,7 +11,7 @@ namespace {
 
 TEST(ConfigYaml, FlattensSectionsWithLineOrigins) {
   const std::string text =
-      "mapping:\n  eta: 0.1\n  static_stereo:\n    max_disparity: 3\nimu:\n  gyro_bias_rad_s: "
+      "mapping:\n  eta: 0.1\n  static_stereo:\n    zncc_threshold: 0.3\nimu:\n  gyro_bias_rad_s: "
       "[0.01, 0, "
       "0]\n";
   Expected<std::vector<ConfigEntry>> entries = ParseConfigYaml(text, "my.yaml");
@@ -19,12 +19,12 @@ TEST(ConfigYaml, FlattensSectionsWithLineOrigins) {
   ASSERT_EQ(entries->size(), 3u);
   EXPECT_EQ((*entries)[0].key, "mapping.eta");
   EXPECT_EQ((*entries)[0].value.origin, "my.yaml:2");
-  EXPECT_EQ((*entries)[1].key, "mapping.static_stereo.max_disparity");
+  EXPECT_EQ((*entries)[1].key, "mapping.static_stereo.zncc_threshold");
   EXPECT_TRUE((*entries)[2].value.is_list);
   pipeline::OdometryConfig config;
   ASSERT_TRUE(ApplyConfigEntries(*entries, &config).ok());
   EXPECT_DOUBLE_EQ(config.mapping.eta, 0.1);
-  EXPECT_EQ(config.mapping.static_stereo.max_disparity, 3);
+  EXPECT_DOUBLE_EQ(config.mapping.static_stereo.zncc_threshold, 0.3);
   EXPECT_DOUBLE_EQ(config.imu.gyro_bias_rad_s[0], 0.01);
 }
 
@@ -96,7 +96,7 @@ TEST(Presets, CarryTheirDatasetsValues) {
   ASSERT_TRUE(ApplyConfigEntries(*PresetEntries("dsec"), &dsec).ok());
   EXPECT_DOUBLE_EQ(rpg.mapping.inv_depth_min, 0.2);  // 0.5–5 m indoors
   EXPECT_DOUBLE_EQ(rpg.mapping.inv_depth_max, 2.0);
-  EXPECT_EQ(rpg.mapping.static_stereo.max_disparity, 40);
+  EXPECT_FALSE(rpg.mapping.static_stereo.smooth_time_surface);           // ESVO rpg
   EXPECT_DOUBLE_EQ(dsec.mapping.inv_depth_max, 0.25);                    // from 4 m
   EXPECT_EQ(dsec.edge_sampling.num_points, 2500);                        // the paper's ~2.5k
   EXPECT_DOUBLE_EQ(dsec.adaptive_accumulation.contrast_threshold, 0.5);  // β

@@ -207,18 +207,18 @@ bool RefineOne(const RefinementInput& in, const Match& m, const RectifiedStereo&
   if (!(rho > 0.001) || jtj <= 0.0) return false;
   const double sigma_t2 = nu / (nu - 2.0) * s2_t;
   const double variance = sigma_t2 / jtj;
-  // Culling (algorithm.md §4.7).
-  const double area = static_cast<double>(kPatchWidth) * kPatchHeight;
+  // Culling (algorithm.md §4.7); temporal residuals are on the AA maps, which may have their own
+  // thresholds.
   const TemporalStereoConfig& t = config.temporal_stereo;
   const bool temporal = m.kind == StereoKind::kTemporal;
-  // Temporal residuals are on the AA maps, which have their own thresholds.
   const double max_stddev =
       temporal && t.max_inv_depth_stddev > 0.0 ? t.max_inv_depth_stddev : c.max_inv_depth_stddev;
   const double residual =
       temporal && t.residual_threshold > 0.0 ? t.residual_threshold : c.residual_threshold;
-  if (std::sqrt(variance) > max_stddev) return false;
-  const double max_relative = c.max_relative_stddev;
-  if (max_relative > 0.0 && std::sqrt(variance) > max_relative * rho) return false;
+  const double area = static_cast<double>(kPatchWidth) * kPatchHeight;
+  const double sigma = std::sqrt(variance);
+  if (sigma > max_stddev) return false;
+  if (c.max_relative_stddev > 0.0 && sigma > c.max_relative_stddev * rho) return false;
   if (e_ptr->cost > residual * residual * area) return false;
   if (rho < config.inv_depth_min || rho > config.inv_depth_max) return false;
   out->u = m.u;

@@ -96,7 +96,7 @@ TemporalPartners FindTemporalPartners(std::span<const PosedObservation> history,
   if (partners.main == nullptr || config.cross_check_px <= 0.0) return partners;
   const auto older = history.first(static_cast<std::size_t>(partners.main - history.data()));
   partners.check = FindTemporalPartner(older, partners.main->T_world_obs,
-                                       config.cross_check_spacing * config.min_translation_m);
+                                       kCrossCheckSpacing * config.min_translation_m);
   return partners;
 }
 
@@ -169,10 +169,10 @@ Status Mapper::Update(const PosedObservation& now, const PosedObservation* partn
   const events::Observation& obs = *now.obs;
   std::vector<events::EdgeSample> samples =
       UsableSamples(obs, stereo_.width, stereo_.height, config_.max_points);
-  // Temporal stereo compares AA maps, so by default it matches each sample where the AA map
-  // has it, before the snap to the time surface's newest edge (temporal_stereo.match_at_aa_pixels).
+  // Temporal stereo compares AA maps, so it matches each sample where the AA map has it, before
+  // the snap to the time surface's newest edge, and the point then moves onto the snapped
+  // position (MoveOntoNewestEdge).
   const std::vector<events::EdgeSample> on_aa_map = samples;
-  const bool at_aa_pixels = config_.temporal_stereo.match_at_aa_pixels;
   if (config_.snap_to_edge_px > 0.0)
     SnapToNewestEdge(obs.negative_ts_left, obs.grad_u, obs.grad_v, config_.snap_to_edge_px,
                      &samples);
@@ -195,7 +195,7 @@ Status Mapper::Update(const PosedObservation& now, const PosedObservation* partn
     if (gv <= 0.01) gv = 0.1;
     const bool horizontal = gu / gv < config_.eta;
     if (horizontal && temporal && partner != nullptr) {
-      const events::EdgeSample& m = at_aa_pixels ? on_aa_map[i] : s;
+      const events::EdgeSample& m = on_aa_map[i];
       temporal_group.emplace_back(m.u, m.v);
       temporal_snapped.emplace_back(s.u, s.v);
     }

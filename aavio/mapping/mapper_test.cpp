@@ -227,7 +227,7 @@ TEST(Mapper, TemporalPointsMoveOntoTheirSnappedSamples) {
 
 // Observations 0.3 m apart along x (oldest first): the partner is the newest at least
 // min_translation_m from now, the check partner the newest older one at least
-// cross_check_spacing × min_translation_m beyond it.
+// kCrossCheckSpacing × min_translation_m beyond it.
 TEST(Mapper, FindsTheTemporalPartnerAndTheCrossCheckPartner) {
   std::vector<PosedObservation> history(6);
   for (int i = 0; i < 6; ++i)
@@ -240,19 +240,17 @@ TEST(Mapper, FindsTheTemporalPartnerAndTheCrossCheckPartner) {
   EXPECT_EQ(partners.main, &history[4]);  // 0.6 m back
   EXPECT_EQ(partners.check, nullptr);     // cross-check off
   config.cross_check_px = 1.0;
-  config.cross_check_spacing = 1.0;
   partners = FindTemporalPartners(history, now, config);
   EXPECT_EQ(partners.main, &history[4]);
-  EXPECT_EQ(partners.check, &history[2]);  // 0.6 m beyond the partner: baselines 0.6 and 1.2 m
-  config.cross_check_spacing = 0.5;        // the default
-  partners = FindTemporalPartners(history, now, config);
   EXPECT_EQ(partners.check, &history[3]);  // 0.3 m beyond it: baselines 0.6 and 0.9 m
-  config.min_translation_m = 1.0;
-  config.cross_check_spacing = 1.0;
+  config.min_translation_m = 2.0;
   partners = FindTemporalPartners(history, now, config);
-  EXPECT_EQ(partners.main, &history[2]);  // 1.2 m back
-  EXPECT_EQ(partners.check, nullptr);     // nothing 1 m beyond it
-  now.t = {0.6, 0.0, 0.0};                // every observation within 0.9 m
+  EXPECT_EQ(partners.main, nullptr);  // every observation within 1.8 m
+  config.min_translation_m = 0.9;
+  partners = FindTemporalPartners(history, now, config);
+  EXPECT_EQ(partners.main, &history[3]);   // 0.9 m back
+  EXPECT_EQ(partners.check, &history[1]);  // 0.6 m beyond it, the first at least 0.45 m
+  now.t = {0.7, 0.0, 0.0};                 // every observation within 0.9 m
   EXPECT_EQ(FindTemporalPartners(history, now, config).main, nullptr);
 }
 

@@ -2,20 +2,9 @@
 
 namespace aavio::mapping {
 
-namespace {
-
-bool IsOdd(int n) {
-  return n % 2 == 1;
-}
-
-}  // namespace
-
 Status StaticStereoConfig::Validate() const {
   FieldChecker check;
-  check.InRange("min_disparity", min_disparity, 0, 10000)
-      .InRange("max_disparity", max_disparity, 1, 10000)
-      .Require(min_disparity < max_disparity, "min_disparity",
-               "must be below max_disparity (" + FieldChecker::Num(max_disparity) + ")")
+  check
       .Require(zncc_threshold > 0.0 && zncc_threshold <= 1.0, "zncc_threshold",
                "= " + FieldChecker::Num(zncc_threshold) + " must be in (0, 1] (cost ½(1 − ZNCC))")
       .InRange("uniqueness", uniqueness, 0.0, 1.0)
@@ -26,16 +15,12 @@ Status StaticStereoConfig::Validate() const {
 
 Status TemporalStereoConfig::Validate() const {
   FieldChecker check;
-  check
-      .Require(patch_rows >= 1 && patch_rows <= 31 && IsOdd(patch_rows), "patch_rows",
-               "must be odd, from 1 to 31")
-      .Require(patch_cols >= 3 && patch_cols <= 127 && IsOdd(patch_cols), "patch_cols",
-               "must be odd, from 3 to 127")
-      .Positive("min_translation_m", min_translation_m)
+  check.Positive("min_translation_m", min_translation_m)
       .NonNegative("min_parallax_px", min_parallax_px)
       .NonNegative("max_relative_depth_error", max_relative_depth_error)
       .NonNegative("cross_check_px", cross_check_px)
-      .Positive("cross_check_spacing", cross_check_spacing)
+      .NonNegative("residual_threshold", residual_threshold)
+      .NonNegative("max_inv_depth_stddev", max_inv_depth_stddev)
       .Positive("min_depth_m", min_depth_m)
       .Require(max_depth_m > min_depth_m, "max_depth_m",
                "= " + FieldChecker::Num(max_depth_m) + " must exceed min_depth_m (" +

@@ -9,10 +9,9 @@
 
 namespace aavio::mapping {
 
-/// Left/right block matching along rectified rows (algorithm.md §4.3).
+/// Left/right block matching along rectified rows (algorithm.md §4.3), over the disparities
+/// the depth range [1/inv_depth_max, 1/inv_depth_min] allows.
 struct StaticStereoConfig {
-  int min_disparity = 0;            ///< [px], further bounded by the depth range
-  int max_disparity = 150;          ///< [px], further bounded by the depth range
   double zncc_threshold = 0.1;      ///< θ: accept cost ½(1 − ZNCC) below it ([ICRA], [ESVO])
   bool smooth_time_surface = true;  ///< Gaussian 5×5 on the TS before matching (DSEC configs)
   /// Reject a match when another local minimum's ZNCC is within this fraction of the best's
@@ -29,8 +28,6 @@ struct StaticStereoConfig {
 
   template <typename V>
   void VisitFields(V&& v) {
-    v("min_disparity", min_disparity);
-    v("max_disparity", max_disparity);
     v("zncc_threshold", zncc_threshold);
     v("smooth_time_surface", smooth_time_surface);
     v("uniqueness", uniqueness);
@@ -40,41 +37,29 @@ struct StaticStereoConfig {
   Status Validate() const;
 };
 
-/// AA-now vs AA-past matching for edges parallel to the baseline (algorithm.md §4.4).
+/// AA-now vs AA-past matching for edges parallel to the baseline (algorithm.md §4.4); the fixed
+/// parts are in temporal_stereo.hpp.
 struct TemporalStereoConfig {
   bool enabled = true;
-  int patch_rows = 5;  ///< wide flat patch ([ICRA] 5×31 hard-coded)
-  int patch_cols = 31;
   double min_translation_m = 0.3;  ///< partner at least this far away ([ICRA] 0.3 hard-coded)
-  /// Skip pixels whose epipolar segment over the depth range is shorter than this (aavio): with
-  /// forward motion pixels near the focus of expansion have almost no parallax.
+  /// Skip pixels whose epipolar segment over the depth range is shorter than this (aavio; 0 =
+  /// off): under forward motion pixels near the focus of expansion have almost no parallax.
   double min_parallax_px = 0.0;
-  bool smooth_aa =
-      false;  ///< Gaussian 5×5 on the AA maps (aavio; sub-pixel matching, LM gradients)
   /// Reject a match whose depth would move by more than this fraction for one pixel of matching
-  /// error (aavio; 0 = off): triangulation too ill-conditioned to be worth a map point.
+  /// error (aavio; 0 = off): triangulation too ill-conditioned to be worth a map point. A short
+  /// baseline (a hand-held camera's few centimetres) fails it nearly always.
   double max_relative_depth_error = 0.0;
+  /// Gaussian 5×5 on the AA maps before matching (aavio): sub-pixel matching and refinement
+  /// gradients on wide event bands; on DAVIS-sized images it costs near-horizontal completeness.
+  bool smooth_aa = false;
   /// Cross-check against a second partner (aavio; 0 = off): the newest observation at least
-  /// cross_check_spacing × min_translation_m beyond the first partner is searched too, and a
-  /// match is kept only if both depths agree within this many pixels of matching error (the sum
-  /// of both searches' depth change per pixel); the depth is then their precision-weighted mean.
-  /// A wrong match on a repeated or ambiguous structure rarely lands on the same depth in two
-  /// views — unless the second baseline is a whole multiple of the first (below).
+  /// 1.5 × min_translation_m beyond the first partner is searched too, and a match is kept only
+  /// if both depths agree within this many pixels of matching error (the sum of both searches'
+  /// depth change per pixel); the depth is then their precision-weighted mean. A wrong match on
+  /// a repeated or ambiguous structure rarely lands on the same depth in two views.
   double cross_check_px = 0.0;
-  /// The check partner's distance beyond the first partner, in units of min_translation_m
-  /// (aavio). At 1 the baselines are about 1 : 2, and on a periodic texture a mismatch by one
-  /// period in the first partner and by two in the second triangulate to the same depth, so
-  /// the check passes it (DSEC twins' paved road, cells of 1.2 m: 8 % of the temporal points
-  /// off by 30 % or more on 04a). At 0.5 they are about 1 : 1.5.
-  double cross_check_spacing = 0.5;
-  /// With snap_to_edge_px > 0 (aavio): match and triangulate each sample at its own pixel of
-  /// the AA map, then move the point onto the snapped position. Set to false, temporal stereo
-  /// matches at the snapped pixel (before this option existed): the snap follows the time
-  /// surface's newest edge, not the AA maps' edges, and on the DSEC twins that left temporal
-  /// depths 1.5-2.3 % too near (median; docs/mapping.md).
-  bool match_at_aa_pixels = true;
-  /// Culling of temporal estimates ([ESVO2] residual_vis_threshold_ln, stdVar_vis_threshold_ln):
-  /// the AA residual differs from the TS one; ≤ 0 uses depth_refinement's thresholds.
+  /// Culling of temporal estimates, whose residual is on the AA maps, not the time surfaces
+  /// ([ESVO2] residual_vis_threshold_ln, stdVar_vis_threshold_ln); ≤ 0: depth_refinement's.
   double residual_threshold = 0.0;
   double max_inv_depth_stddev = 0.0;
   double min_depth_m = 0.8;  ///< triangulated depth gate ([ICRA] 0.8–40 m hard-coded)
@@ -83,15 +68,11 @@ struct TemporalStereoConfig {
   template <typename V>
   void VisitFields(V&& v) {
     v("enabled", enabled);
-    v("patch_rows", patch_rows);
-    v("patch_cols", patch_cols);
     v("min_translation_m", min_translation_m);
     v("min_parallax_px", min_parallax_px);
-    v("smooth_aa", smooth_aa);
     v("max_relative_depth_error", max_relative_depth_error);
+    v("smooth_aa", smooth_aa);
     v("cross_check_px", cross_check_px);
-    v("cross_check_spacing", cross_check_spacing);
-    v("match_at_aa_pixels", match_at_aa_pixels);
     v("residual_threshold", residual_threshold);
     v("max_inv_depth_stddev", max_inv_depth_stddev);
     v("min_depth_m", min_depth_m);

@@ -11,10 +11,8 @@ namespace aavio::mapping {
 
 DisparityRange StaticDisparityRange(const RectifiedStereo& stereo, const MappingConfig& config) {
   DisparityRange r;
-  r.min = std::max(static_cast<int>(std::floor(stereo.Disparity(config.inv_depth_min))),
-                   config.static_stereo.min_disparity);
-  r.max = std::min(static_cast<int>(std::ceil(stereo.Disparity(config.inv_depth_max))),
-                   config.static_stereo.max_disparity);
+  r.min = std::max(0, static_cast<int>(std::floor(stereo.Disparity(config.inv_depth_min))));
+  r.max = static_cast<int>(std::ceil(stereo.Disparity(config.inv_depth_max)));
   return r;
 }
 

@@ -21,7 +21,7 @@ inline constexpr double kEmptyPatchFraction = 0.95;
 struct DisparityRange {
   int min = 0, max = 0;
 };
-/// d_min = max(⌊d(ρ_min)⌋, min_disparity), d_max = min(⌈d(ρ_max)⌉, max_disparity).
+/// d_min = max(⌊d(ρ_min)⌋, 0), d_max = ⌈d(ρ_max)⌉: the disparities of the depth range.
 DisparityRange StaticDisparityRange(const RectifiedStereo& stereo, const MappingConfig& config);
 
 struct StaticStereoInput {

@@ -106,9 +106,11 @@ TEST(StaticStereo, DisparityRangeFollowsTheDepthRange) {
   MappingConfig config = Config();
   const DisparityRange r = StaticDisparityRange(stereo, config);
   EXPECT_EQ(r.min, 0);
-  EXPECT_EQ(r.max, 81);  // ⌈321.6 · 0.25⌉
-  config.static_stereo.max_disparity = 40;
+  EXPECT_EQ(r.max, 81);                 // ⌈321.6 · 0.25⌉
+  config.inv_depth_max = 40.0 / 321.6;  // nearest depth 8 m
   EXPECT_EQ(StaticDisparityRange(stereo, config).max, 40);
+  config.inv_depth_min = 5.5 / 321.6;  // farthest 58 m
+  EXPECT_EQ(StaticDisparityRange(stereo, config).min, 5);
 }
 
 TEST(TemporalStereo, TriangulatesAKnownPoint) {
@@ -204,11 +206,19 @@ TEST(TemporalStereo, StatsCountWhereEachCandidateIsLost) {
   ASSERT_GT(base.matched, static_cast<int>(scene.points.size()) / 2);
   EXPECT_EQ(base.ill_conditioned + base.check_rejected + base.out_of_range, 0);
 
-  // A conditioning gate no parallax can pass: the matches become ill-conditioned.
-  config.temporal_stereo.max_relative_depth_error = 1e-6;
-  const TemporalMatchStats strict = stats_of(plain);
+  // A short baseline (0.1 m: 5.4 px of parallax at 10 m): one pixel of matching error moves the
+  // depth by ~19 %, above a max_relative_depth_error of 0.1, so the matches are ill-conditioned.
+  StripedPlane short_baseline;
+  short_baseline.T_past_now.t = {0.0, 0.1, 0.0};
+  short_baseline.aa_past =
+      testing::Shifted(short_baseline.aa_now, 0.0, -short_baseline.stereo.f * 0.1 / 10.0);
+  const TemporalStereoInput short_input{short_baseline.aa_now, short_baseline.aa_past,
+                                        short_baseline.T_past_now};
+  EXPECT_EQ(stats_of(short_input).ill_conditioned, 0);  // the test is off by default
+  config.temporal_stereo.max_relative_depth_error = 0.1;
+  const TemporalMatchStats strict = stats_of(short_input);
   EXPECT_EQ(strict.matched, 0);
-  EXPECT_EQ(strict.ill_conditioned, base.matched);
+  EXPECT_GT(strict.ill_conditioned, base.matched / 2);
   config = Config();
 
   // A check partner that puts the plane at 7 m rejects what the first partner matched.

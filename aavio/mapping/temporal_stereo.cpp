@@ -70,7 +70,7 @@ Outcome SearchSegment(const NormalizedPatch& patch, const cv::Mat& aa_past,
                       const RectifiedStereo& stereo, const MappingConfig& config, double rho_lo,
                       double rho_hi, SegmentMatch* out) {
   const TemporalStereoConfig& t = config.temporal_stereo;
-  const int hr = t.patch_rows / 2, hc = t.patch_cols / 2;
+  constexpr int hr = kTemporalPatchRows / 2, hc = kTemporalPatchCols / 2;
   const int w = aa_past.cols, h = aa_past.rows;
   const int stride = static_cast<int>(aa_past.step1());
   // The epipolar segment: projections of the farthest and the nearest allowed depth.
@@ -137,7 +137,7 @@ Outcome MatchOne(const TemporalStereoInput& in, const Eigen::Vector2f& x,
                  const RectifiedStereo& stereo, const MappingConfig& config, double rho_lo,
                  double rho_hi, Match* out) {
   const TemporalStereoConfig& t = config.temporal_stereo;
-  const int hr = t.patch_rows / 2, hc = t.patch_cols / 2;
+  constexpr int hr = kTemporalPatchRows / 2, hc = kTemporalPatchCols / 2;
   const int w = in.aa_now.cols, h = in.aa_now.rows;
   const int u = static_cast<int>(std::lround(x.x())), v = static_cast<int>(std::lround(x.y()));
   if (u - hc < 0 || u + hc >= w || v - hr < 0 || v + hr >= h) return Outcome::kNoSegment;
@@ -145,13 +145,15 @@ Outcome MatchOne(const TemporalStereoInput& in, const Eigen::Vector2f& x,
   const float* source = in.aa_now.ptr<float>(v - hr) + (u - hc);
   // A patch with (almost) nothing accumulated carries no structure.
   int empty = 0;
-  for (int r = 0; r < t.patch_rows; ++r) {
-    for (int c = 0; c < t.patch_cols; ++c)
+  for (int r = 0; r < kTemporalPatchRows; ++r) {
+    for (int c = 0; c < kTemporalPatchCols; ++c)
       empty += source[r * stride + c] < 1.0f ? 1 : 0;
   }
-  if (empty > kEmptyPatchFraction * t.patch_rows * t.patch_cols) return Outcome::kNoSegment;
+  if (empty > kEmptyPatchFraction * kTemporalPatchRows * kTemporalPatchCols)
+    return Outcome::kNoSegment;
   NormalizedPatch patch;
-  if (!PreparePatch(source, stride, t.patch_rows, t.patch_cols, &patch)) return Outcome::kNoSegment;
+  if (!PreparePatch(source, stride, kTemporalPatchRows, kTemporalPatchCols, &patch))
+    return Outcome::kNoSegment;
 
   SegmentMatch m;
   const Outcome found =
@@ -159,8 +161,8 @@ Outcome MatchOne(const TemporalStereoInput& in, const Eigen::Vector2f& x,
   if (found != Outcome::kMatched) return found;
   // Conditioning: one pixel of matching error may not move the depth by more than
   // max_relative_depth_error (parallax too small for this depth otherwise).
-  if (t.max_relative_depth_error > 0.0 && !(m.dz_per_px / m.z <= t.max_relative_depth_error))
-    return Outcome::kIllConditioned;
+  const double max_error = config.temporal_stereo.max_relative_depth_error;
+  if (max_error > 0.0 && !(m.dz_per_px / m.z <= max_error)) return Outcome::kIllConditioned;
   double rho = 1.0 / m.z;
   if (in.aa_check != nullptr) {
     // Cross-check (aavio): an independent search in a second, older view must find the same

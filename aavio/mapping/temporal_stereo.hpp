@@ -1,12 +1,12 @@
 #pragma once
 /// Temporal stereo (algorithm.md §4.4): an edge pixel of the current AA map is searched in the
-/// AA map of an earlier observation, along the exact epipolar segment between the projections of
-/// the nearest and farthest allowed depth (not the reference code's fixed −10…70 px), with a
-/// wide flat patch (5 rows × 31 columns) suited to edges parallel to the baseline; the best match
-/// under 3θ is triangulated (midpoint of the two rays) and gated by depth. aavio's optional
-/// tests: enough parallax (min_parallax_px), a well-conditioned depth (max_relative_depth_error),
-/// and an independent search in a second, older partner that finds the same depth
-/// (cross_check_px; the two are then averaged).
+/// AA map of an earlier observation (both smoothed with smooth_aa), along the exact epipolar
+/// segment between the projections of the nearest and farthest allowed depth (not the reference
+/// code's fixed −10…70 px), with a wide flat patch (5 rows × 31 columns) suited to edges parallel
+/// to the baseline; the best match under 3θ is triangulated (midpoint of the two rays) and gated by
+/// depth. aavio's optional tests: enough parallax (min_parallax_px), a well-conditioned depth
+/// (max_relative_depth_error), and an independent search in a second, older partner that finds the
+/// same depth (cross_check_px; the two are then averaged).
 
 #include <opencv2/core/mat.hpp>
 #include <span>
@@ -17,6 +17,9 @@
 #include "aavio/mapping/rectified_stereo.hpp"
 
 namespace aavio::mapping {
+
+/// The matching patch ([ICRA code], hard-coded 5×31).
+inline constexpr int kTemporalPatchRows = 5, kTemporalPatchCols = 31;
 
 struct TemporalStereoInput {
   const cv::Mat& aa_now;   ///< CV_32FC1 AA map of the current observation

@@ -30,8 +30,8 @@ TEST(OdometryConfig, ValidationNamesTheFieldAndTheRule) {
   };
   const std::vector<Case> cases = {
       {"time_surface.decay_ms", "-5", "time_surface.decay_ms = -5 must be in [0.1, 10000]"},
-      {"mapping.temporal_stereo.patch_cols", "30",
-       "mapping.temporal_stereo.patch_cols must be odd"},
+      {"mapping.temporal_stereo.min_parallax_px", "-2",
+       "mapping.temporal_stereo.min_parallax_px = -2 must be >= 0"},
       {"adaptive_accumulation.check_interval_ms", "20",
        "adaptive_accumulation.check_interval_ms must not exceed window_ms (10)"},
       {"mapping.inv_depth_max", "0.0001",
@@ -44,8 +44,8 @@ TEST(OdometryConfig, ValidationNamesTheFieldAndTheRule) {
        "mapping.temporal_stereo.cross_check_px = -1 must be"},
       {"edge_sampling.min_spacing_px", "-1",
        "edge_sampling.min_spacing_px = -1 must be in [0, 16]"},
-      {"mapping.temporal_stereo.cross_check_spacing", "0",
-       "mapping.temporal_stereo.cross_check_spacing = 0 must be"},
+      {"mapping.temporal_stereo.min_translation_m", "0",
+       "mapping.temporal_stereo.min_translation_m = 0 must be > 0"},
       {"mapping.temporal_stereo.max_depth_m", "0.5",
        "mapping.temporal_stereo.max_depth_m = 0.5 must exceed min_depth_m (0.8)"},
       {"mapping.depth_refinement.student_t_nu", "2", "student_t_nu = 2 must be in (2, 1000)"},
