@@ -6,11 +6,14 @@
 ///
 ///   struct TimeSurfaceConfig {
 ///     double decay_ms = 30.0;  ///< exponential decay constant τ [ms]
-///     template <class V> void VisitFields(V&& v) { v("decay_ms", decay_ms); }
+///     template <class V> void VisitFields(V&& v) {
+///       v("decay_ms", decay_ms, "exponential decay τ of the time surface [ms]");
+///     }
 ///     Status Validate() const;
 ///   };
 ///
-/// A member that itself has VisitFields() is a nested section ("mapping.fusion.radius").
+/// A member that itself has VisitFields() is a nested section ("mapping.fusion.radius"). The
+/// third argument, a one-line description, is what `aavio config --list` prints beside the key.
 /// Supported field types: bool, int, int64, double, std::string, enums with an EnumNames
 /// specialisation, and std::array<double, N>.
 
@@ -53,7 +56,7 @@ namespace config_detail {
 
 template <typename T>
 concept Section = requires(T& t) {
-  t.VisitFields([](const char*, auto&) {});
+  t.VisitFields([](const char*, auto&, auto&&...) {});
 };
 
 template <typename T>
@@ -69,6 +72,7 @@ std::string FormatDouble(double value);
 /// Accessors of one field, built by BuildFieldIndex.
 struct FieldRef {
   std::string type;  ///< "double", "int", "bool", "string", "one of a|b", "list of 3 numbers"
+  std::string doc;   ///< one-line description
   std::function<Status(const ConfigValue&)> set;
   std::function<ConfigValue()> get;
 };
@@ -172,12 +176,14 @@ class IndexBuilder {
       : index_(index), order_(order), prefix_(std::move(prefix)) {}
 
   template <typename T>
-  void operator()(const char* name, T& member) {
+  void operator()(const char* name, T& member, const char* doc = "") {
     const std::string key = prefix_ + name;
     if constexpr (Section<T>) {
       member.VisitFields(IndexBuilder(index_, order_, key + "."));
     } else {
-      (*index_)[key] = MakeFieldRef(member);
+      FieldRef ref = MakeFieldRef(member);
+      ref.doc = doc;
+      (*index_)[key] = std::move(ref);
       order_->push_back(key);
     }
   }

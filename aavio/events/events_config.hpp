@@ -15,8 +15,9 @@ struct TimeSurfaceConfig {
 
   template <typename V>
   void VisitFields(V&& v) {
-    v("rate_hz", rate_hz);
-    v("decay_ms", decay_ms);
+    v("rate_hz", rate_hz,
+      "ticks per second of data time: one time surface and one registration each");
+    v("decay_ms", decay_ms, "exponential decay τ of the time surface [ms]");
   }
   Status Validate() const;
 };
@@ -35,12 +36,15 @@ struct AdaptiveAccumulationConfig {
 
   template <typename V>
   void VisitFields(V&& v) {
-    v("grid_cols", grid_cols);
-    v("grid_rows", grid_rows);
-    v("check_interval_ms", check_interval_ms);
-    v("contrast_threshold", contrast_threshold);
-    v("window_ms", window_ms);
-    v("map_count_gain", map_count_gain);
+    v("grid_cols", grid_cols, "blocks across the image");
+    v("grid_rows", grid_rows, "blocks down the image");
+    v("check_interval_ms", check_interval_ms,
+      "δt: event time between a block's contrast checks [ms]");
+    v("contrast_threshold", contrast_threshold,
+      "β: a block freezes once the variance of its non-zero counts exceeds it");
+    v("window_ms", window_ms, "events a map may accumulate, back from the tick [ms]");
+    v("map_count_gain", map_count_gain,
+      "AA map for temporal stereo: 0 binary, g > 0 min(255, g · count) (aavio)");
   }
   Status Validate() const;
 };
@@ -65,11 +69,13 @@ struct EdgeSamplingConfig {
 
   template <typename V>
   void VisitFields(V&& v) {
-    v("mode", mode);
-    v("num_points", num_points);
-    v("grid_cols", grid_cols);
-    v("grid_rows", grid_rows);
-    v("min_spacing_px", min_spacing_px);
+    v("mode", mode,
+      "where mapping's samples come from: the AA map (paper) or ESVO's newest events");
+    v("num_points", num_points, "samples per tick (the budget M)");
+    v("grid_cols", grid_cols, "sampling blocks across the image");
+    v("grid_rows", grid_rows, "sampling blocks down the image");
+    v("min_spacing_px", min_spacing_px,
+      "no two AA samples within this many pixels while a block has others (aavio)");
   }
   Status Validate() const;
 };

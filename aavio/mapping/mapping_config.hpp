@@ -28,11 +28,16 @@ struct StaticStereoConfig {
 
   template <typename V>
   void VisitFields(V&& v) {
-    v("zncc_threshold", zncc_threshold);
-    v("smooth_time_surface", smooth_time_surface);
-    v("uniqueness", uniqueness);
-    v("left_right_tolerance_px", left_right_tolerance_px);
-    v("out_of_view_radius_px", out_of_view_radius_px);
+    v("zncc_threshold", zncc_threshold,
+      "θ: accept a static match whose cost ½(1 − ZNCC) is below it");
+    v("smooth_time_surface", smooth_time_surface,
+      "Gaussian 5×5 on the time surfaces before static matching");
+    v("uniqueness", uniqueness,
+      "reject a match with a rival minimum within this fraction of its correlation (aavio)");
+    v("left_right_tolerance_px", left_right_tolerance_px,
+      "left-right check: the back match must land this close; < 0 off (aavio)");
+    v("out_of_view_radius_px", out_of_view_radius_px,
+      "drop left-border matches the previous map says are out of view; 0 off (aavio)");
   }
   Status Validate() const;
 };
@@ -67,16 +72,23 @@ struct TemporalStereoConfig {
 
   template <typename V>
   void VisitFields(V&& v) {
-    v("enabled", enabled);
-    v("min_translation_m", min_translation_m);
-    v("min_parallax_px", min_parallax_px);
-    v("max_relative_depth_error", max_relative_depth_error);
-    v("smooth_aa", smooth_aa);
-    v("cross_check_px", cross_check_px);
-    v("residual_threshold", residual_threshold);
-    v("max_inv_depth_stddev", max_inv_depth_stddev);
-    v("min_depth_m", min_depth_m);
-    v("max_depth_m", max_depth_m);
+    v("enabled", enabled,
+      "temporal stereo for near-horizontal edges (paper); off: static stereo only");
+    v("min_translation_m", min_translation_m,
+      "the temporal partner is at least this far from the current pose [m]");
+    v("min_parallax_px", min_parallax_px,
+      "skip pixels with less parallax over the depth range; 0 off (aavio) [px]");
+    v("max_relative_depth_error", max_relative_depth_error,
+      "drop matches 1 px of error would move by more than this fraction (aavio)");
+    v("smooth_aa", smooth_aa, "Gaussian 5×5 on the AA maps before temporal matching (aavio)");
+    v("cross_check_px", cross_check_px,
+      "a second, older partner must agree within this many pixels; 0 off (aavio)");
+    v("residual_threshold", residual_threshold,
+      "cull temporal estimates by their AA residual; 0: refinement's threshold");
+    v("max_inv_depth_stddev", max_inv_depth_stddev,
+      "cull temporal estimates by σ_ρ [1/m]; 0: refinement's threshold");
+    v("min_depth_m", min_depth_m, "nearest depth temporal stereo may triangulate [m]");
+    v("max_depth_m", max_depth_m, "farthest depth temporal stereo may triangulate [m]");
   }
   Status Validate() const;
 };
@@ -93,11 +105,15 @@ struct DepthRefinementConfig {
 
   template <typename V>
   void VisitFields(V&& v) {
-    v("student_t_nu", student_t_nu);
-    v("student_t_scale", student_t_scale);
-    v("residual_threshold", residual_threshold);
-    v("max_inv_depth_stddev", max_inv_depth_stddev);
-    v("max_relative_stddev", max_relative_stddev);
+    v("student_t_nu", student_t_nu, "ν of the Student-t residual model");
+    v("student_t_scale", student_t_scale,
+      "scale s of the Student-t residual model [time-surface levels]");
+    v("residual_threshold", residual_threshold,
+      "cull an estimate whose cost exceeds threshold² × patch area");
+    v("max_inv_depth_stddev", max_inv_depth_stddev,
+      "cull an estimate (and a fused point) with σ_ρ above it [1/m]");
+    v("max_relative_stddev", max_relative_stddev,
+      "cull an estimate with σ_ρ / ρ above it; 0 off (aavio)");
   }
   Status Validate() const;
 };
@@ -126,12 +142,15 @@ struct FusionConfig {
 
   template <typename V>
   void VisitFields(V&& v) {
-    v("strategy", strategy);
-    v("max_frames", max_frames);
-    v("max_points", max_points);
-    v("radius", radius);
-    v("publish_while_filling", publish_while_filling);
-    v("confirm_across_batches", confirm_across_batches);
+    v("strategy", strategy,
+      "the fusion FIFO: the newest max_frames batches, or up to max_points points");
+    v("max_frames", max_frames, "batches a const_frames FIFO holds");
+    v("max_points", max_points, "points a const_points FIFO holds");
+    v("radius", radius, "cells each estimate is fused into: 0 → 2×2, 1 → 3×3");
+    v("publish_while_filling", publish_while_filling,
+      "tracking also gets the maps of a filling FIFO (aavio)");
+    v("confirm_across_batches", confirm_across_batches,
+      "only an estimate of another batch confirms a point (aavio)");
   }
   Status Validate() const;
 };
@@ -144,7 +163,7 @@ struct RegularizationConfig {
 
   template <typename V>
   void VisitFields(V&& v) {
-    v("enabled", enabled);
+    v("enabled", enabled, "neighbourhood regularisation of each cleaned map (ESVO rpg)");
   }
   Status Validate() const { return Status::Ok(); }
 };
@@ -164,8 +183,8 @@ struct BootstrapConfig {
 
   template <typename V>
   void VisitFields(V&& v) {
-    v("min_points", min_points);
-    v("method", method);
+    v("min_points", min_points, "points the first map needs, else the next cycle tries again");
+    v("method", method, "the first map: sgm (reference) or the cycle's block matching (aavio)");
   }
   Status Validate() const;
 };
@@ -189,12 +208,13 @@ struct MappingConfig {
 
   template <typename V>
   void VisitFields(V&& v) {
-    v("rate_hz", rate_hz);
-    v("inv_depth_min", inv_depth_min);
-    v("inv_depth_max", inv_depth_max);
-    v("max_points", max_points);
-    v("eta", eta);
-    v("snap_to_edge_px", snap_to_edge_px);
+    v("rate_hz", rate_hz, "mapping cycles per second of data time");
+    v("inv_depth_min", inv_depth_min, "inverse of the farthest depth mapped [1/m]");
+    v("inv_depth_max", inv_depth_max, "inverse of the nearest depth mapped [1/m]");
+    v("max_points", max_points, "edge samples a mapping cycle uses at most");
+    v("eta", eta, "η: |g_u| / |g_v| below it sends a sample to temporal stereo");
+    v("snap_to_edge_px", snap_to_edge_px,
+      "move samples up to this far onto the newest edge; 0 off (aavio) [px]");
     v("static_stereo", static_stereo);
     v("temporal_stereo", temporal_stereo);
     v("depth_refinement", depth_refinement);

@@ -33,12 +33,16 @@ struct PipelineConfig {
 
   template <typename V>
   void VisitFields(V&& v) {
-    v("random_seed", random_seed);
-    v("num_threads", num_threads);
-    v("max_buffered_events", max_buffered_events);
-    v("max_lost_ticks", max_lost_ticks);
-    v("real_time", real_time);
-    v("concurrent_mapping", concurrent_mapping);
+    v("random_seed", random_seed, "seeds every random choice: same seed, same trajectory");
+    v("num_threads", num_threads, "worker threads; 0 = all cores (results do not depend on it)");
+    v("max_buffered_events", max_buffered_events,
+      "events buffered per camera; the oldest are dropped beyond it");
+    v("max_lost_ticks", max_lost_ticks,
+      "consecutive lost ticks before mapping re-initialises at the last good pose");
+    v("real_time", real_time,
+      "live input: a mapping cycle still running when the next is due is skipped");
+    v("concurrent_mapping", concurrent_mapping,
+      "a mapping cycle runs beside the next ticks' tracking, its lag fixed in data time");
   }
   Status Validate() const;
 };

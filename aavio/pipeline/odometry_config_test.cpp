@@ -24,6 +24,19 @@ TEST(OdometryConfig, EveryKeyIsReachableAndUnique) {
   EXPECT_TRUE(index.fields.count("imu.gyro_bias_rad_s"));
 }
 
+// `aavio config --list` prints every key with a one-line description.
+TEST(OdometryConfig, EveryKeyHasAOneLineDescription) {
+  OdometryConfig config;
+  const auto index = BuildFieldIndex(config);
+  EXPECT_LE(index.order.size(), 80u);
+  for (const std::string& key : index.order) {
+    const std::string& doc = index.fields.at(key).doc;
+    EXPECT_FALSE(doc.empty()) << key;
+    EXPECT_EQ(doc.find('\n'), std::string::npos) << key;
+    EXPECT_LE(doc.size(), 100u) << key;
+  }
+}
+
 TEST(OdometryConfig, ValidationNamesTheFieldAndTheRule) {
   struct Case {
     std::string key, value, expected;

@@ -40,18 +40,24 @@ struct TrackingConfig {
 
   template <typename V>
   void VisitFields(V&& v) {
-    v("max_points", max_points);
-    v("batch_size", batch_size);
-    v("min_map_points", min_map_points);
-    v("max_iterations", max_iterations);
-    v("polish_iterations", polish_iterations);
-    v("huber_threshold", huber_threshold);
-    v("max_correction_deg", max_correction_deg);
-    v("max_correction_m", max_correction_m);
-    v("velocity_gain", velocity_gain);
-    v("lost_velocity_decay", lost_velocity_decay);
-    v("gyro_rotation_weight", gyro_rotation_weight);
-    v("translation_prior_weight", translation_prior_weight);
+    v("max_points", max_points, "map points sampled per registration");
+    v("batch_size", batch_size, "points per Levenberg–Marquardt step (mini-batches)");
+    v("min_map_points", min_map_points,
+      "fewer map points than this: the tick is not tracked (no_map)");
+    v("max_iterations", max_iterations, "Levenberg–Marquardt steps per tick");
+    v("polish_iterations", polish_iterations, "then LM steps on all points (aavio)");
+    v("huber_threshold", huber_threshold, "robust loss threshold [time-surface levels]");
+    v("max_correction_deg", max_correction_deg,
+      "a registration further than this from the prediction is lost [deg]");
+    v("max_correction_m", max_correction_m, "... or further than this [m]");
+    v("velocity_gain", velocity_gain,
+      "constant-velocity smoothing: 1 last tick's velocity, 0 zero motion");
+    v("lost_velocity_decay", lost_velocity_decay,
+      "the velocity is multiplied by it on each lost tick (aavio)");
+    v("gyro_rotation_weight", gyro_rotation_weight,
+      "the gyroscope's rotation also as a cost term; 0 off (aavio)");
+    v("translation_prior_weight", translation_prior_weight,
+      "the predicted translation as a soft prior; 0 off (aavio)");
   }
   Status Validate() const;
 };

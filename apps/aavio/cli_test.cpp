@@ -156,6 +156,11 @@ TEST(Cli, ConfigPrintsListsAndWritesTheEffectiveConfig) {
   r = RunAavio({"config", "--list"});
   EXPECT_NE(r.out.find("mapping.fusion.strategy"), std::string::npos);
   EXPECT_NE(r.out.find("one of const_frames|const_points"), std::string::npos);
+  // Each key with its value, type, the rule Validate() applies and a description.
+  EXPECT_NE(r.out.find("number, must be in [0.1, 10000]\n    exponential decay"), std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("mapping.eta"), std::string::npos);
+  EXPECT_NE(r.out.find("number, must be >= 0\n    η: |g_u| / |g_v|"), std::string::npos);
 }
 
 // Every overlay under configs/overlays loads on top of the DSEC preset and sets what it says.
