@@ -171,39 +171,37 @@ bool RefineOne(const RefinementInput& in, const Match& m, const RectifiedStereo&
   Evaluation* e_ptr = &buffers[0];
   Weigh(raw, f.size(), nu, s2, e_ptr);  // scale_at left r(ρ) in raw
   double jtj = 0.0, jtr = 0.0;
-  {
-    double lambda = 1e-3;
-    for (int iteration = 0; iteration < kMaxIterations; ++iteration) {
-      const double h = std::max(1e-7, 1e-3 * rho);
-      jtj = JacobianNorm2(f, rho, h, *e_ptr, &jtr);
-      if (jtj <= 1e-12) break;
-      bool improved = false;
-      double step = 0.0;
-      for (int attempt = 0; attempt < 5 && !improved; ++attempt) {
-        step = -jtr / (jtj * (1.0 + lambda));
-        const double candidate = rho + step;
-        if (candidate > 0.0) {
-          Evaluation& trial = buffers[1 - current];
-          Evaluate(f, candidate, nu, s2, &trial, raw);
-          if (trial.cost < e_ptr->cost) {
-            rho = candidate;
-            current = 1 - current;
-            e_ptr = &buffers[current];
-            lambda = std::max(1e-7, lambda * 0.1);
-            improved = true;
-            continue;
-          }
+  double lambda = 1e-3;
+  for (int iteration = 0; iteration < kMaxIterations; ++iteration) {
+    const double h = std::max(1e-7, 1e-3 * rho);
+    jtj = JacobianNorm2(f, rho, h, *e_ptr, &jtr);
+    if (jtj <= 1e-12) break;
+    bool improved = false;
+    double step = 0.0;
+    for (int attempt = 0; attempt < 5 && !improved; ++attempt) {
+      step = -jtr / (jtj * (1.0 + lambda));
+      const double candidate = rho + step;
+      if (candidate > 0.0) {
+        Evaluation& trial = buffers[1 - current];
+        Evaluate(f, candidate, nu, s2, &trial, raw);
+        if (trial.cost < e_ptr->cost) {
+          rho = candidate;
+          current = 1 - current;
+          e_ptr = &buffers[current];
+          lambda = std::max(1e-7, lambda * 0.1);
+          improved = true;
+          continue;
         }
-        lambda *= 10.0;
       }
-      if (!improved || std::abs(step) < 1e-3 * rho) break;
-      // Re-estimate the scale where we are now (IRLS) and re-weigh; the accepted trial left r(ρ)
-      // in raw.
-      s2 = StudentTScale2(std::span<const float>(raw, n), nu, s2_t);
-      Weigh(raw, f.size(), nu, s2, e_ptr);
+      lambda *= 10.0;
     }
-    jtj = JacobianNorm2(f, rho, std::max(1e-7, 1e-3 * rho), *e_ptr, &jtr);
+    if (!improved || std::abs(step) < 1e-3 * rho) break;
+    // Re-estimate the scale where we are now (IRLS) and re-weigh; the accepted trial left r(ρ)
+    // in raw.
+    s2 = StudentTScale2(std::span<const float>(raw, n), nu, s2_t);
+    Weigh(raw, f.size(), nu, s2, e_ptr);
   }
+  jtj = JacobianNorm2(f, rho, std::max(1e-7, 1e-3 * rho), *e_ptr, &jtr);
   if (!(rho > 0.001) || jtj <= 0.0) return false;
   const double sigma_t2 = nu / (nu - 2.0) * s2_t;
   const double variance = sigma_t2 / jtj;

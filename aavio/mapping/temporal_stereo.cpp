@@ -44,8 +44,6 @@ double TriangulateDepth(const RectifiedStereo& stereo, const Eigen::Vector2d& x_
 
 namespace {
 
-constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
-
 // The best match of a prepared patch of the current AA map along the epipolar segment of the
 // depth range in one past AA map, with its triangulated depth and that depth's change for one
 // pixel of matching error along the segment.
