@@ -42,6 +42,11 @@ Expected<pipeline::OdometryConfig> ResolveOdometryConfig(const ConfigSources& so
     if (!entries) return entries.status();
     AAVIO_RETURN_IF_ERROR(ApplyConfigEntries(*entries, &config));
   }
+  for (const std::string& name : sources.overlays) {
+    Expected<std::vector<ConfigEntry>> entries = io::OverlayEntries(name);
+    if (!entries) return entries.status();
+    AAVIO_RETURN_IF_ERROR(ApplyConfigEntries(*entries, &config));
+  }
   std::vector<ConfigEntry> overrides;
   for (const std::string& text : sources.overrides) {
     Expected<ConfigEntry> entry = ParseKeyValueOverride(text);
@@ -58,6 +63,8 @@ std::string DescribeSources(const ConfigSources& sources) {
   std::string text = sources.preset.empty() ? "defaults" : "preset " + sources.preset;
   for (const std::string& file : sources.files)
     text += " + " + file;
+  for (const std::string& name : sources.overlays)
+    text += " + " + name;
   for (const std::string& o : sources.overrides)
     text += " + --set " + o;
   return text;

@@ -1,6 +1,7 @@
 #pragma once
 /// Builds the effective OdometryConfig from its sources, in this order (later wins):
-/// defaults → --preset NAME → --config FILE (each, in order) → --set key=value (each, in order).
+/// defaults → --preset NAME → --config FILE (each, in order; a shipped overlay's name unless a
+/// file of that name exists) → overlays a command adds (`run --esvo`) → --set key=value.
 
 #include <string>
 #include <vector>
@@ -17,6 +18,7 @@ namespace aavio::cli {
 struct ConfigSources {
   std::string preset;
   std::vector<std::string> files;
+  std::vector<std::string> overlays;  ///< shipped overlays by name, always the embedded ones
   std::vector<std::string> overrides;
 };
 

@@ -86,9 +86,9 @@ void ChoosePreset(const OpenedSequence& opened, RunOptions* options, Context& ct
 }
 
 Status RunFull(RunOptions options, OpenedSequence& opened, Context& ctx) {
-  // The ESVO-like mode is the shipped overlay configs/overlays/esvo.yaml, after the user's
-  // files; later --set still apply.
-  if (options.esvo) options.config.files.push_back("esvo");
+  // The ESVO-like mode is the shipped overlay configs/overlays/esvo.yaml (the embedded one, even
+  // if a file named "esvo" is here), after the user's files; --set still applies.
+  if (options.esvo) options.config.overlays.push_back("esvo");
   if (options.real_time) options.config.overrides.push_back("pipeline.real_time=true");
   Expected<pipeline::OdometryConfig> config = ResolveOdometryConfig(options.config);
   if (!config) return config.status();
