@@ -39,6 +39,18 @@ Expected<std::vector<GtDepthEntry>> ReadGtDepthIndex(const std::string& dir) {
   return entries;
 }
 
+cv::Mat DepthFromDisparityImage(const cv::Mat& disparity, double fb, double disparity_offset) {
+  cv::Mat depth_m(disparity.size(), CV_32FC1, cv::Scalar(0));
+  for (int y = 0; y < disparity.rows; ++y) {
+    for (int x = 0; x < disparity.cols; ++x) {
+      const std::uint16_t raw = disparity.at<std::uint16_t>(y, x);
+      const double d = raw / 256.0 - disparity_offset;
+      if (raw != 0 && d > 0.0) depth_m.at<float>(y, x) = static_cast<float>(fb / d);
+    }
+  }
+  return depth_m;
+}
+
 Expected<GtDepthFrame> LoadGtDepthFrame(const std::string& dir, const GtDepthEntry& entry,
                                         double fb, double disparity_offset) {
   GtDepthFrame frame;
@@ -56,14 +68,7 @@ Expected<GtDepthFrame> LoadGtDepthFrame(const std::string& dir, const GtDepthEnt
     if (disparity.type() != CV_16UC1) {
       return ParseError(png.string() + ": expected a 16-bit single-channel PNG (disparity × 256)");
     }
-    frame.depth_m = cv::Mat(disparity.size(), CV_32FC1, cv::Scalar(0));
-    for (int y = 0; y < disparity.rows; ++y) {
-      for (int x = 0; x < disparity.cols; ++x) {
-        const std::uint16_t raw = disparity.at<std::uint16_t>(y, x);
-        const double d = raw / 256.0 - disparity_offset;
-        if (raw != 0 && d > 0.0) frame.depth_m.at<float>(y, x) = static_cast<float>(fb / d);
-      }
-    }
+    frame.depth_m = DepthFromDisparityImage(disparity, fb, disparity_offset);
   } else {
     return NotFound(StrFormat("%s: neither depth_%s.tiff nor disparity_%s.png exists", dir.c_str(),
                               entry.index.c_str(), entry.index.c_str()));

@@ -27,6 +27,10 @@ struct GtDepthFrame {
   cv::Mat edges;    ///< CV_8UC1 labels, empty if the folder has none
 };
 
+/// Depth [m] (CV_32FC1, 0 = none) of a disparity image in the layout above (CV_16UC1, disparity
+/// × 256, 0 = none): fb / (disparity − disparity_offset).
+cv::Mat DepthFromDisparityImage(const cv::Mat& disparity, double fb, double disparity_offset);
+
 /// Loads one frame; from disparity PNGs depth = fb / (disparity − offset) needs the rig's f·b
 /// and principal-point offset (cx_left − cx_right).
 Expected<GtDepthFrame> LoadGtDepthFrame(const std::string& dir, const GtDepthEntry& entry,

@@ -45,7 +45,7 @@ Status MappingFrontEnd::Tick(TimeNs t_ns) {
   AAVIO_RETURN_IF_ERROR(
       builder_.Build(t_ns, obs.get(), {.right_ts = cycle_tick, .edges = cycle_tick}));
   ++ticks_;
-  if (on_tick) on_tick(obs->timings);
+  if (on_tick) on_tick(t_ns, obs->timings);
   Expected<geometry::RigidTransform> pose = poses_.Query(t_ns);
   if (!pose) return Status::Ok();  // no ground truth here: nothing to map with
   const mapping::PosedObservation now{obs, *pose};

@@ -38,8 +38,8 @@ class MappingFrontEnd {
                  TimeNs t_end_ns);
 
   std::function<void(const MappingCycle&)> on_cycle;
-  /// Called for every tick's timings (also those without mapping).
-  std::function<void(const events::RepresentationTimings&)> on_tick;
+  /// Called at every tick (also those without mapping) with its time and timings.
+  std::function<void(TimeNs, const events::RepresentationTimings&)> on_tick;
 
   const mapping::RectifiedStereo& stereo() const { return stereo_; }
   std::int64_t ticks() const { return ticks_; }

@@ -14,58 +14,14 @@
 #include "aavio/io/sequence.hpp"
 #include "aavio/io/trajectory_io.hpp"
 #include "aavio/sim/simulator.hpp"
-#include "tests/test_utils.hpp"
+#include "tests/simulated_sequence.hpp"
 
 namespace aavio::pipeline {
 namespace {
 
-struct Recording {
-  std::optional<geometry::StereoRig> rig;
-  TimeNs start_ns = 0;
-  std::vector<io::SensorPacket> packets;  // 10 ms each
-  std::vector<geometry::StampedPose> truth;
-};
-
-const Recording& Mini() {
-  static const Recording recording = [] {
-    Recording r;
-    sim::SimulationRequest request;
-    request.preset = "mini";
-    request.duration_s = 1.5;
-    request.seed = 3;
-    request.out_dir = (aavio::testing::ScratchDir() / "odometry_mini").string();
-    Expected<sim::SimulationReport> report = sim::Simulate(request);
-    EXPECT_TRUE(report.ok()) << report.status().message();
-    if (!report.ok()) return r;
-    Expected<io::SequenceDescription> d = io::DescribeSequence(report->sequence_yaml);
-    EXPECT_TRUE(d.ok()) << d.status().message();
-    if (!d.ok()) return r;
-    Expected<io::LoadedCalibration> calibration = io::LoadCalibration(d->calibration);
-    EXPECT_TRUE(calibration.ok()) << calibration.status().message();
-    if (!calibration.ok()) return r;
-    r.rig = calibration->rig;
-    io::SequenceReaderOptions options;
-    options.packet_ns = 10 * kNsPerMs;
-    auto reader = io::SequenceReader::Open(*d, options);
-    EXPECT_TRUE(reader.ok()) << reader.status().message();
-    if (!reader.ok()) return r;
-    r.start_ns = (*reader)->start_ns();
-    io::SensorPacket packet;
-    while (true) {
-      Expected<bool> more = (*reader)->Next(&packet);
-      EXPECT_TRUE(more.ok());
-      if (!more.ok() || !*more) break;
-      r.packets.push_back(packet);
-    }
-    if (d->gt_trajectory) {
-      Expected<std::vector<geometry::StampedPose>> truth =
-          io::ReadTumTrajectory(d->gt_trajectory->path);
-      EXPECT_TRUE(truth.ok());
-      if (truth.ok()) r.truth = *truth;
-    }
-    return r;
-  }();
-  return recording;
+const aavio::testing::SimulatedSequence& Mini() {
+  static const aavio::testing::SimulatedSequence mini = aavio::testing::Simulate("mini", 1.5, 3);
+  return mini;
 }
 
 OdometryConfig RpgPreset() {
@@ -81,7 +37,7 @@ OdometryConfig RpgPreset() {
 /// Every tick of the recording; the cameras see nothing in [blind_from_s, blind_to_s).
 std::vector<OdometryTick> RunMini(const OdometryConfig& config, double blind_from_s = -1.0,
                                   double blind_to_s = -1.0) {
-  const Recording& r = Mini();
+  const aavio::testing::SimulatedSequence& r = Mini();
   if (!r.rig || r.packets.empty()) {
     ADD_FAILURE() << "the mini sequence could not be simulated or read";
     return {};

@@ -268,6 +268,15 @@ TEST(Cli, RunMapsWithGroundTruthPosesAndScoresDepth) {
     EXPECT_TRUE(j["stages"].contains(stage)) << stage;
   }
   EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(out) / "config.yaml"));
+  EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(out) / "map.ply"));
+  // `aavio eval --run` scores the maps the run wrote to depth/ (it has no trajectory of its own).
+  r = RunAavio({"eval", "--run", out, "--json"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  const nlohmann::json e = nlohmann::json::parse(r.out);
+  EXPECT_FALSE(e.contains("ate_rmse_m"));
+  EXPECT_GT(e["depth"]["frames"].get<int>(), 0);
+  EXPECT_EQ(e["depth"]["frames"].get<int>(), j["depth_maps_written"].get<int>());
+  EXPECT_LT(e["depth"]["relative_median"].get<double>(), 0.1);
   // Without --preset, mapping alone takes the preset of the camera's resolution, as the odometry
   // does (it ran on the defaults before).
   const std::string auto_out = (dir / "run_auto").string();
@@ -316,6 +325,10 @@ TEST(Cli, RunTracksAgainstGroundTruthMaps) {
   EXPECT_LT(j["rpe_100ms"]["rotation_deg_rmse"].get<double>(), 1.0);
   EXPECT_LT(j["rpe_100ms"]["translation_m_rmse"].get<double>(), 0.04);
   EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(out) / "stamped_traj_estimate.txt"));
+  // `aavio eval --run` works on this kind of run folder too.
+  r = RunAavio({"eval", "--run", out, "--json"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  EXPECT_GT(nlohmann::json::parse(r.out)["pairs"].get<int>(), 90);
 }
 
 }  // namespace

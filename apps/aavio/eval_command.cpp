@@ -10,12 +10,22 @@
 #include "aavio/common/format.hpp"
 #include "aavio/io/trajectory_io.hpp"
 #include "aavio/mapping/rectified_stereo.hpp"
+#include "aavio/recording/run_evaluation.hpp"
 #include "cli.hpp"
-#include "run_evaluation.hpp"
 #include "sequence_opening.hpp"
 
 namespace aavio::cli {
 namespace {
+
+using recording::DepthJson;
+using recording::DepthTable;
+using recording::EvaluateRunDepth;
+using recording::EvaluateTrajectories;
+using recording::RunGroundTruth;
+using recording::TrajectoryEvalOptions;
+using recording::TrajectoryEvaluation;
+using recording::TrajectoryEvaluationJson;
+using recording::TrajectoryEvaluationTable;
 
 namespace fs = std::filesystem;
 
@@ -68,12 +78,18 @@ Status Evaluate(const EvalOptions& options, Context& ctx) {
     est_path = (fs::path(options.run) / "stamped_traj_estimate.txt").string();
     gt_path = truth->trajectory_path;
   }
-  Expected<std::vector<geometry::StampedPose>> est = io::ReadTumTrajectory(est_path);
-  if (!est) return est.status();
+  // A run on ground-truth poses (`aavio run --gt-poses`) has maps but no trajectory of its own.
+  const bool has_estimate = options.run.empty() || fs::exists(est_path);
   Expected<std::vector<geometry::StampedPose>> gt = io::ReadTumTrajectory(gt_path);
   if (!gt) return gt.status();
-  Expected<TrajectoryEvaluation> e = EvaluateTrajectories(*est, *gt, eval_options);
-  if (!e) return e.status().WithContext(est_path + " vs " + gt_path);
+  std::optional<TrajectoryEvaluation> e;
+  if (has_estimate) {
+    Expected<std::vector<geometry::StampedPose>> est = io::ReadTumTrajectory(est_path);
+    if (!est) return est.status();
+    Expected<TrajectoryEvaluation> evaluated = EvaluateTrajectories(*est, *gt, eval_options);
+    if (!evaluated) return evaluated.status().WithContext(est_path + " vs " + gt_path);
+    e = std::move(*evaluated);
+  }
 
   std::optional<eval::DepthErrorSummary> depth;
   const fs::path run_depth = fs::path(options.run) / "depth";
@@ -82,17 +98,28 @@ Status Evaluate(const EvalOptions& options, Context& ctx) {
     if (!d) return d.status();
     depth = d->Summary();
   }
+  if (!e && !depth) {
+    return NotFound(options.run +
+                    ": holds neither stamped_traj_estimate.txt nor depth maps with "
+                    "ground truth to score them against");
+  }
   if (options.json) {
-    nlohmann::json j = TrajectoryEvaluationJson(*e);
-    j["estimate"] = est_path;
+    nlohmann::json j = e ? TrajectoryEvaluationJson(*e) : nlohmann::json::object();
+    if (e) j["estimate"] = est_path;
     j["ground_truth"] = gt_path;
     if (depth) j["depth"] = DepthJson(*depth);
     ctx.out << j.dump(2) << "\n";
     return Status::Ok();
   }
-  ctx.out << "estimate     " << est_path << "\nground truth " << gt_path << "\n";
-  ctx.out << TrajectoryEvaluationTable(*e);
-  if (depth) ctx.out << DepthTable(*depth);
+  if (e) {
+    ctx.out << "estimate     " << est_path << "\nground truth " << gt_path << "\n";
+    ctx.out << TrajectoryEvaluationTable(*e);
+  } else {
+    ctx.out << "trajectory: none (a run on the ground-truth poses); depth maps of " << options.run
+            << "/depth against " << truth->depth_dir << "\n";
+  }
+  if (depth)
+    ctx.out << DepthTable(*depth);
   else if (truth && !truth->depth_dir.empty())
     ctx.out << "depth: the run has no depth/ maps (runs from before this version, or mapping "
                "never started)\n";

@@ -13,12 +13,20 @@
 #include "aavio/common/format.hpp"
 #include "aavio/io/config_yaml.hpp"
 #include "aavio/io/trajectory_io.hpp"
+#include "aavio/recording/run_evaluation.hpp"
 #include "cli.hpp"
 #include "report/plot_report_script.hpp"
-#include "run_evaluation.hpp"
+#include "sequence_opening.hpp"
 
 namespace aavio::cli {
 namespace {
+
+using recording::DepthJson;
+using recording::EvaluateRunDepth;
+using recording::EvaluateTrajectories;
+using recording::RunGroundTruth;
+using recording::TrajectoryEvaluation;
+using recording::TrajectoryEvaluationJson;
 
 namespace fs = std::filesystem;
 
@@ -45,34 +53,13 @@ std::string ShellQuote(const std::string& s) {
   return q + "'";
 }
 
-// Everything the plots of one run need, as JSON.
-Expected<nlohmann::json> GatherRun(const std::string& dir, const std::string& name, Context& ctx) {
-  const fs::path summary_path = fs::path(dir) / "summary.json";
-  std::ifstream in(summary_path);
-  if (!in) return NotFound(summary_path.string() + ": not found; --run takes a folder of `aavio run`");
-  nlohmann::json run;
-  try {
-    in >> run["summary"];
-  } catch (const nlohmann::json::exception& e) {
-    return ParseError(summary_path.string() + ": not valid JSON (" + e.what() + ")");
-  }
-  run["name"] = name;
-  run["dir"] = fs::absolute(dir).string();
-  const std::string sequence = run["summary"].value("sequence", "");
-  Expected<RunGroundTruth> truth = LoadRunGroundTruth(sequence);
-  const fs::path estimate_path = fs::path(dir) / "stamped_traj_estimate.txt";
-  if (!truth || !fs::exists(estimate_path)) {
-    ctx.err << "aavio report: " << dir << ": no ground truth to evaluate against ("
-            << (truth ? estimate_path.string() + " missing" : truth.status().message())
-            << "); plotting timings only\n";
-    return run;
-  }
-  Expected<std::vector<geometry::StampedPose>> est = io::ReadTumTrajectory(estimate_path.string());
+// The trajectory against ground truth, thinned for the plots.
+Expected<nlohmann::json> TrajectoryPlots(const std::string& estimate_path,
+                                         const std::vector<geometry::StampedPose>& gt) {
+  Expected<std::vector<geometry::StampedPose>> est = io::ReadTumTrajectory(estimate_path);
   if (!est) return est.status();
-  Expected<std::vector<geometry::StampedPose>> gt = io::ReadTumTrajectory(truth->trajectory_path);
-  if (!gt) return gt.status();
-  Expected<TrajectoryEvaluation> e = EvaluateTrajectories(*est, *gt, {});
-  if (!e) return e.status().WithContext(estimate_path.string());
+  Expected<TrajectoryEvaluation> e = EvaluateTrajectories(*est, gt, {});
+  if (!e) return e.status().WithContext(estimate_path);
   nlohmann::json ev = TrajectoryEvaluationJson(*e);
   const std::vector<double> distance = eval::DistanceFromStart(e->pairs);
   std::vector<std::size_t> index(e->pairs.size());
@@ -98,11 +85,42 @@ Expected<nlohmann::json> GatherRun(const std::string& dir, const std::string& na
                               {"trans_pct", Thin(s.trans_pct, 2000)},
                               {"rot_deg_per_m", Thin(s.rot_deg_per_m, 2000)}});
   }
-  run["evaluation"] = ev;
+  return ev;
+}
+
+// Everything the plots of one run need, as JSON.
+Expected<nlohmann::json> GatherRun(const std::string& dir, const std::string& name, Context& ctx) {
+  const fs::path summary_path = fs::path(dir) / "summary.json";
+  std::ifstream in(summary_path);
+  if (!in)
+    return NotFound(summary_path.string() + ": not found; --run takes a folder of `aavio run`");
+  nlohmann::json run;
+  try {
+    in >> run["summary"];
+  } catch (const nlohmann::json::exception& e) {
+    return ParseError(summary_path.string() + ": not valid JSON (" + e.what() + ")");
+  }
+  run["name"] = name;
+  run["dir"] = fs::absolute(dir).string();
+  const std::string sequence = run["summary"].value("sequence", "");
+  Expected<RunGroundTruth> truth = LoadRunGroundTruth(sequence);
+  const fs::path estimate_path = fs::path(dir) / "stamped_traj_estimate.txt";
+  if (!truth) {
+    ctx.err << "aavio report: " << dir << ": no ground truth to evaluate against ("
+            << truth.status().message() << "); plotting timings only\n";
+    return run;
+  }
+  Expected<std::vector<geometry::StampedPose>> gt = io::ReadTumTrajectory(truth->trajectory_path);
+  if (!gt) return gt.status();
+  // A run on ground-truth poses has depth maps but no trajectory of its own.
+  if (fs::exists(estimate_path)) {
+    Expected<nlohmann::json> ev = TrajectoryPlots(estimate_path.string(), *gt);
+    if (!ev) return ev.status();
+    run["evaluation"] = *ev;
+  }
   const fs::path depth_dir = fs::path(dir) / "depth";
   if (!truth->depth_dir.empty() && fs::exists(depth_dir / "timestamps.txt")) {
-    Expected<eval::DepthErrorAccumulator> depth =
-        EvaluateRunDepth(depth_dir.string(), *truth, *gt);
+    Expected<eval::DepthErrorAccumulator> depth = EvaluateRunDepth(depth_dir.string(), *truth, *gt);
     if (!depth) return depth.status();
     run["depth"] = DepthJson(depth->Summary());
     run["depth_relative_errors"] = Thin(depth->relative_errors(), 50000);
@@ -112,8 +130,9 @@ Expected<nlohmann::json> GatherRun(const std::string& dir, const std::string& na
 
 Status Report(const ReportOptions& options, Context& ctx) {
   if (!options.names.empty() && options.names.size() != options.runs.size()) {
-    return InvalidArgument(StrFormat("--name given %zu times for %zu --run folders; give one per run or none",
-                                     options.names.size(), options.runs.size()));
+    return InvalidArgument(
+        StrFormat("--name given %zu times for %zu --run folders; give one per run or none",
+                  options.names.size(), options.runs.size()));
   }
   const fs::path out_html =
       options.out.empty() ? fs::path(options.runs.front()) / "report.html" : fs::path(options.out);
@@ -124,14 +143,16 @@ Status Report(const ReportOptions& options, Context& ctx) {
   fs::create_directories(data_dir, ec);
   if (ec) return IoError(data_dir.string() + ": cannot create the folder (" + ec.message() + ")");
   for (const auto& entry : fs::directory_iterator(data_dir, ec))
-    if (entry.path().extension() == ".json" || entry.path().extension() == ".csv") fs::remove(entry.path(), ec);
+    if (entry.path().extension() == ".json" || entry.path().extension() == ".csv")
+      fs::remove(entry.path(), ec);
   for (std::size_t i = 0; i < options.runs.size(); ++i) {
     const std::string& dir = options.runs[i];
     std::string name = options.names.empty() ? fs::path(dir).filename().string() : options.names[i];
     if (name.empty()) name = fs::absolute(dir).parent_path().filename().string();
     Expected<nlohmann::json> run = GatherRun(dir, name, ctx);
     if (!run) return run.status();
-    AAVIO_RETURN_IF_ERROR(io::WriteTextFile((data_dir / StrFormat("run_%zu.json", i)).string(), run->dump()));
+    AAVIO_RETURN_IF_ERROR(
+        io::WriteTextFile((data_dir / StrFormat("run_%zu.json", i)).string(), run->dump()));
     const fs::path timings = fs::path(dir) / "timings.csv";
     if (fs::exists(timings))
       fs::copy_file(timings, data_dir / StrFormat("timings_%zu.csv", i),
@@ -152,9 +173,10 @@ Status Report(const ReportOptions& options, Context& ctx) {
     }
   }
   if (python.empty()) {
-    return NotFound("python3 with matplotlib is needed to draw the report: apt-get install "
-                    "python3-matplotlib (scripts/setup.sh installs it), or point AAVIO_PYTHON at "
-                    "an interpreter that has it");
+    return NotFound(
+        "python3 with matplotlib is needed to draw the report: apt-get install "
+        "python3-matplotlib (scripts/setup.sh installs it), or point AAVIO_PYTHON at "
+        "an interpreter that has it");
   }
   const std::string command = "MPLBACKEND=Agg " + ShellQuote(python) + " " +
                               ShellQuote(script.string()) + " " + ShellQuote(data_dir.string()) +
@@ -169,7 +191,8 @@ Status Report(const ReportOptions& options, Context& ctx) {
 void RegisterReport(CLI::App& app, Context& ctx) {
   auto options = std::make_shared<ReportOptions>();
   CLI::App* sub = app.add_subcommand(
-      "report", "Plots and a self-contained report.html of one or more runs (compared on one page)");
+      "report",
+      "Plots and a self-contained report.html of one or more runs (compared on one page)");
   sub->add_option("--run", options->runs, "A run folder of `aavio run` (repeat to compare runs)")
       ->required();
   sub->add_option("--name", options->names, "A label per run (default: the folder name)");

@@ -1,7 +1,8 @@
-// `aavio run`: the full odometry (odometry_run.cpp), and two modes that isolate one half of it:
-// mapping only (`--gt-poses`: the sequence's ground-truth poses drive mapping, and the maps are
-// scored against its ground-truth depth, design.md §6) and tracking only (`--gt-map`,
-// track_gt_map.cpp).
+// `aavio run`: the full odometry, and two modes that isolate one half of it: mapping only
+// (`--gt-poses`: the sequence's ground-truth poses drive mapping, and the maps are scored
+// against its ground-truth depth, design.md §6) and tracking only (`--gt-map`, against maps of
+// the true depth, ground_truth_maps.cpp). Every mode reads the sequence in one loop and leaves
+// its outputs through one recording::RunRecorder.
 #include <tbb/global_control.h>
 #include <unistd.h>
 
@@ -9,35 +10,27 @@
 #include <atomic>
 #include <chrono>
 #include <csignal>
-#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
 #include <optional>
 #include <ostream>
 
 #include "aavio/common/format.hpp"
-#include "aavio/eval/depth_error.hpp"
-#include "aavio/eval/sample_ceiling.hpp"
-#include "aavio/io/calibration.hpp"
 #include "aavio/io/config_yaml.hpp"
-#include "aavio/io/ground_truth_depth.hpp"
-#include "aavio/io/sequence.hpp"
+#include "aavio/io/prefetching_reader.hpp"
 #include "aavio/io/trajectory_io.hpp"
-#include "aavio/mapping/mapper.hpp"
 #include "aavio/pipeline/mapping_front_end.hpp"
-#include "aavio/pipeline/stage_timings.hpp"
+#include "aavio/pipeline/odometry.hpp"
+#include "aavio/recording/run_recorder.hpp"
 #include "cli.hpp"
 #include "config_resolution.hpp"
-#include "mapping_counts.hpp"
-#include "odometry_run.hpp"
-#include "run_evaluation.hpp"
+#include "ground_truth_maps.hpp"
 #include "sequence_opening.hpp"
-#include "track_gt_map.hpp"
 
 namespace aavio::cli {
 namespace {
 
-namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
 
 struct RunOptions {
   std::string sequence, calibration, out_dir;
@@ -49,25 +42,6 @@ struct RunOptions {
   double start_s = 0.0, duration_s = 0.0;
   ConfigSources config;
 };
-
-Expected<geometry::PoseBuffer> GroundTruthPoses(const io::SequenceDescription& d) {
-  if (!d.gt_trajectory) {
-    return InvalidArgument(d.origin +
-                           ": --gt-poses needs ground truth, and the sequence names no "
-                           "ground_truth.trajectory");
-  }
-  if (d.gt_trajectory->format != io::SourceFormat::kText) {
-    return InvalidArgument(d.gt_trajectory->path +
-                           ": --gt-poses reads TUM text trajectories (convert a bag's poses with "
-                           "`aavio convert --to txt`)");
-  }
-  Expected<std::vector<geometry::StampedPose>> poses = io::ReadTumTrajectory(d.gt_trajectory->path);
-  if (!poses) return poses.status();
-  geometry::PoseBuffer buffer(0);
-  for (const geometry::StampedPose& p : *poses)
-    AAVIO_RETURN_IF_ERROR(buffer.Insert(p.t_ns, p.T_world_body));
-  return buffer;
-}
 
 std::atomic<bool> g_interrupted{false};  // Ctrl-C during a run: stop and write what is done
 extern "C" void OnInterrupt(int) {
@@ -85,14 +59,74 @@ void ChoosePreset(const OpenedSequence& opened, RunOptions* options, Context& ct
   }
 }
 
-Status RunFull(RunOptions options, OpenedSequence& opened, Context& ctx) {
+const char* ModeName(const RunOptions& o) {
+  if (o.gt_poses) return "mapping_only_gt_poses";
+  if (o.gt_map) return "tracking_only_gt_map";
+  return o.esvo ? "esvo" : "full";
+}
+
+// The sequence's ground truth, for the recorder to score against. The modes on ground truth
+// need it; the full odometry evaluates where the sequence has a TUM text trajectory.
+Status AttachGroundTruth(const OpenedSequence& s, bool required, recording::RunRecorder* recorder,
+                         std::vector<geometry::StampedPose>* gt_poses) {
+  const io::SequenceDescription& d = s.description;
+  if (!required && !(d.gt_trajectory && d.gt_trajectory->format == io::SourceFormat::kText))
+    return Status::Ok();
+  if (!d.gt_trajectory) {
+    return InvalidArgument(d.origin +
+                           ": --gt-poses and --gt-map need ground truth, and the sequence names "
+                           "no ground_truth.trajectory");
+  }
+  Expected<recording::RunGroundTruth> truth = recording::RunGroundTruth::Of(d, s.calibration.rig);
+  if (!truth) return truth.status();
+  Expected<std::vector<geometry::StampedPose>> poses =
+      io::ReadTumTrajectory(truth->trajectory_path);
+  if (!poses) return poses.status();
+  *gt_poses = *poses;
+  return recorder->SetGroundTruth(*truth, std::move(*poses));
+}
+
+void PrintOdometryRun(const recording::RunRecord& r, Context& ctx) {
+  const nlohmann::json& s = r.summary;
+  auto count = [&](const char* status) { return s["status"].value(status, 0); };
+  ctx.out << StrFormat("%s%.2f s of data (%lld events) in %.1f s: real-time factor %.2f\n",
+                       s["interrupted"].get<bool>() ? "interrupted: " : "", r.data_s,
+                       s["events"].get<long long>(), r.wall_s, s["real_time_factor"].get<double>());
+  ctx.out << StrFormat(
+      "poses %zu: tracking ok %d, lost %d, no map %d; %d bootstrap(s), %d re-initialisation(s)\n",
+      s["poses"].get<std::size_t>(), count("ok"), count("lost"), count("no_map"),
+      s["bootstraps"].get<int>(), s["reinitialisations"].get<int>());
+  std::string stages = "median per stage [ms]:";
+  for (const char* stage : {"time_surface", "ts_derived", "aa_map", "sampling", "tracking",
+                            "matching", "depth_refinement", "fusion", "mapping_total"}) {
+    if (s["stages"].contains(stage))
+      stages += StrFormat(" %s %.2f", stage, s["stages"][stage]["median_ms"].get<double>());
+  }
+  ctx.out << stages << "\n";
+  if (r.accuracy) {
+    const eval::TrajectoryError& e = r.accuracy->absolute;
+    ctx.out << StrFormat(
+        "accuracy vs ground truth (%zu poses, se3-aligned, path %.2f m): ATE RMSE %.4f m "
+        "(%.2f %% of the path); RPE %.2f %%, %.3f deg/m; over %.1f s: %.4f m, %.3f deg\n",
+        e.pairs, e.path_length_m, e.ate_rmse_m,
+        e.path_length_m > 0 ? 100.0 * e.ate_rmse_m / e.path_length_m : 0.0,
+        r.accuracy->relative.trans_pct_rmse, r.accuracy->relative.rot_deg_per_m_rmse, e.rpe_step_s,
+        e.rpe_translation_rmse_m, e.rpe_rotation_rmse_deg);
+  }
+}
+
+Status Run(RunOptions options, Context& ctx) {
+  Expected<OpenedSequence> opened = OpenSequence(options.sequence, options.calibration);
+  if (!opened) return opened.status();
+  ChoosePreset(*opened, &options, ctx);
   // The ESVO-like mode is the shipped overlay configs/overlays/esvo.yaml (the embedded one, even
   // if a file named "esvo" is here), after the user's files; --set still applies.
   if (options.esvo) options.config.overlays.push_back("esvo");
   if (options.real_time) options.config.overrides.push_back("pipeline.real_time=true");
   Expected<pipeline::OdometryConfig> config = ResolveOdometryConfig(options.config);
   if (!config) return config.status();
-  io::SequenceReader* reader = opened.reader.get();
+  const geometry::StereoRig& rig = opened->calibration.rig;
+  io::SequenceReader* reader = opened->reader.get();
   const TimeNs begin = reader->start_ns() + SecondsToNs(options.start_s);
   const TimeNs end =
       options.duration_s > 0.0 ? begin + SecondsToNs(options.duration_s) : reader->end_ns();
@@ -104,188 +138,157 @@ Status RunFull(RunOptions options, OpenedSequence& opened, Context& ctx) {
     workers.emplace(tbb::global_control::max_allowed_parallelism,
                     static_cast<std::size_t>(config->pipeline.num_threads));
   }
-  OdometryRunRequest request;
-  request.sequence = &opened;
-  request.config = &*config;
-  request.config_origin =
-      DescribeSources(options.config) + (options.esvo ? " (ESVO-like mode, --esvo)" : "");
-  request.mode = options.esvo ? "esvo" : "full";
-  request.begin_ns = begin;
-  request.end_ns = end;
-  request.out_dir = options.out_dir;
-  request.progress = !options.quiet && isatty(STDERR_FILENO);
-  g_interrupted.store(false);
-  request.interrupted = &g_interrupted;
-  auto previous = std::signal(SIGINT, OnInterrupt);
-  Expected<OdometryRunResult> result = RunOdometry(request, ctx);
-  std::signal(SIGINT, previous);
-  return result.status();
-}
 
-Status Run(RunOptions options, Context& ctx) {
-  const auto wall_start = std::chrono::steady_clock::now();
-  Expected<OpenedSequence> opened = OpenSequence(options.sequence, options.calibration);
-  if (!opened) return opened.status();
-  ChoosePreset(*opened, &options, ctx);
-  if (!options.gt_poses && !options.gt_map) return RunFull(options, *opened, ctx);
-  Expected<pipeline::OdometryConfig> config = ResolveOdometryConfig(options.config);
-  if (!config) return config.status();
-  const io::SequenceDescription* d = &opened->description;
-  const geometry::StereoRig& rig = opened->calibration.rig;
-  io::SequenceReader* reader = opened->reader.get();
-  Expected<geometry::PoseBuffer> poses = GroundTruthPoses(*d);
-  if (!poses) return poses.status();
-  const TimeNs begin = reader->start_ns() + SecondsToNs(options.start_s);
-  const TimeNs end =
-      options.duration_s > 0.0 ? begin + SecondsToNs(options.duration_s) : reader->end_ns();
-  if (options.start_s > 0.0) AAVIO_RETURN_IF_ERROR(reader->Seek(begin));
-  if (options.gt_map) {
-    return RunTrackingOnGtMap({&*opened, &*poses, &*config, begin, end, options.out_dir}, ctx);
-  }
-
-  std::vector<io::GtDepthEntry> gt_depth;
-  if (!d->gt_depth.empty()) {
-    Expected<std::vector<io::GtDepthEntry>> index = io::ReadGtDepthIndex(d->gt_depth);
-    if (!index) return index.status();
-    gt_depth = std::move(*index);
-  }
-  const mapping::RectifiedStereo stereo = mapping::RectifiedStereo::FromRig(rig);
-  eval::DepthErrorAccumulator depth_all(
-      {stereo.width, stereo.height, stereo.f, stereo.cx_left, stereo.cy, stereo.fb()});
-  // What the map could cover at best: its cycles' samples at their true depth.
-  eval::SampleCeiling ceiling({stereo.width, stereo.height, stereo.f, stereo.cx_left, stereo.cy},
-                              1.0 / config->mapping.inv_depth_max,
-                              1.0 / config->mapping.inv_depth_min,
-                              config->mapping.fusion.radius == 0 ? 2 : 3);
-  pipeline::StageTimings timings;
-  Status cycle_status = Status::Ok();
-  std::int64_t cycles = 0, bootstraps = 0, depth_maps = 0;
-  std::size_t map_points_sum = 0;
-  MappingCounts counts;
-
-  pipeline::MappingFrontEnd front_end(rig, *config, *poses, begin);
-  front_end.on_tick = [&](const events::RepresentationTimings& t) {
-    timings.Add("time_surface", t.time_surface_ms);
-    if (t.edges) {  // mapping ticks only
-      timings.Add("aa_map", t.aa_ms);
-      timings.Add("sampling", t.sampling_ms);
-    }
-  };
-  front_end.on_cycle = [&](const pipeline::MappingCycle& cycle) {
-    ++cycles;
-    bootstraps += cycle.bootstrap ? 1 : 0;
-    if (cycle.map && cycle.map->confirmed) {
-      ++depth_maps;
-      map_points_sum += cycle.map->points.size();
-    }
-    if (!cycle.bootstrap) {
-      const mapping::MappingCycleReport& r = cycle.report;
-      timings.Add("matching", r.matching_ms, r.static_candidates + r.temporal_candidates);
-      timings.Add("depth_refinement", r.refinement_ms, r.static_matches + r.temporal_matches);
-      timings.Add("fusion", r.fusion_ms, r.map_points);
-      timings.Add("mapping_total", r.total_ms, r.samples);
-      counts.Add(r);
-    }
-    // Only cycles whose samples went into the fusion count for the ceiling.
-    const bool fused = cycle.bootstrap || cycle.report.fused_cycles > 0;
-    if (!fused || gt_depth.empty() || !cycle_status.ok()) return;
-    // The ground-truth depth frame nearest in time (within 25 ms), seen from its own pose.
-    auto it = std::lower_bound(gt_depth.begin(), gt_depth.end(), cycle.t_ns,
-                               [](const io::GtDepthEntry& e, TimeNs t) { return e.t_ns < t; });
-    const io::GtDepthEntry* best = nullptr;
-    for (auto c : {it, it == gt_depth.begin() ? it : it - 1}) {
-      if (c == gt_depth.end()) continue;
-      if (!best || std::llabs(c->t_ns - cycle.t_ns) < std::llabs(best->t_ns - cycle.t_ns))
-        best = &*c;
-    }
-    if (!best || std::llabs(best->t_ns - cycle.t_ns) > 25 * kNsPerMs) return;
-    Expected<geometry::RigidTransform> pose = poses->Query(best->t_ns);
-    if (!pose) return;
-    Expected<io::GtDepthFrame> frame =
-        io::LoadGtDepthFrame(d->gt_depth, *best, stereo.fb(), stereo.cx_left - stereo.cx_right);
-    if (!frame) {
-      cycle_status = frame.status();
-      return;
-    }
-    // The samples as a mapping cycle takes them (an SGM bootstrap uses all of the observation's;
-    // its one cycle is counted with these). Read on the ground-truth frame nearest the cycle.
-    if (cycle.bootstrap) ceiling.Clear();
-    std::vector<Eigen::Vector2f> samples;
-    for (const events::EdgeSample& e :
-         mapping::MappingSamples(*cycle.observation, stereo, config->mapping))
-      samples.emplace_back(e.u, e.v);
-    ceiling.AddCycle(samples, frame->depth_m, *pose);
-    if (!cycle.map || !cycle.map->confirmed) return;
-    depth_all.Add(cycle.map->points_world, frame->depth_m, frame->edges, *pose);
-    ceiling.Score(cycle.bootstrap ? 1 : static_cast<std::size_t>(cycle.report.fused_cycles),
-                  frame->depth_m, frame->edges, *pose);
-  };
-
-  const bool progress = !options.quiet && isatty(STDERR_FILENO);
-  std::int64_t events = 0;
-  io::SensorPacket packet;
-  while (true) {
-    Expected<bool> more = reader->Next(&packet);
-    if (!more) return more.status();
-    if (!*more || packet.t_begin_ns >= end) break;
-    events += static_cast<std::int64_t>(packet.left.size() + packet.right.size());
-    AAVIO_RETURN_IF_ERROR(front_end.Process(packet.left, packet.right, packet.t_end_ns));
-    AAVIO_RETURN_IF_ERROR(cycle_status);
-    if (progress && front_end.ticks() % 100 == 0) {
-      ctx.err << StrFormat("\rmapping %.1f s", NsToSeconds(packet.t_end_ns - begin)) << std::flush;
-    }
-  }
-  if (progress) ctx.err << "\r";
-  const double wall_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-  const double data_s = NsToSeconds(std::min(end, reader->end_ns()) - begin);
-
-  std::error_code ec;
-  fs::create_directories(options.out_dir, ec);
-  if (ec) return IoError(options.out_dir + ": cannot create the folder (" + ec.message() + ")");
+  recording::RunRecorderOptions recorder_options;
+  recorder_options.out_dir = options.out_dir;
+  recorder_options.mode = ModeName(options);
+  recorder_options.sequence = opened->description.origin;
+  recorder_options.version = VersionString();
+  recorder_options.begin_ns = begin;
+  recorder_options.config_yaml = io::FormatConfigYaml(
+      FlattenConfig(*config), "aavio effective configuration (" + VersionString() +
+                                  ")\nfrom: " + DescribeSources(options.config) +
+                                  (options.esvo ? " (ESVO-like mode, --esvo)" : ""));
+  Expected<std::unique_ptr<recording::RunRecorder>> opened_recorder =
+      recording::RunRecorder::Open(recorder_options, rig, *config);
+  if (!opened_recorder) return opened_recorder.status();
+  recording::RunRecorder& recorder = **opened_recorder;
+  std::vector<geometry::StampedPose> gt_list;
   AAVIO_RETURN_IF_ERROR(
-      io::WriteTextFile((fs::path(options.out_dir) / "config.yaml").string(),
-                        io::FormatConfigYaml(FlattenConfig(*config),
-                                             "aavio effective configuration (" + VersionString() +
-                                                 ")\nfrom: " + DescribeSources(options.config))));
-  nlohmann::json summary;
-  summary["mode"] = "mapping_only_gt_poses";
-  summary["data_duration_s"] = data_s;
-  summary["wall_s"] = wall_s;
-  summary["real_time_factor"] = wall_s > 0.0 ? data_s / wall_s : 0.0;
-  summary["events"] = events;
-  summary["mapping_cycles"] = cycles;
-  summary["bootstraps"] = bootstraps;
-  summary["depth_maps"] = depth_maps;
-  summary["mean_map_points"] =
-      depth_maps > 0 ? static_cast<double>(map_points_sum) / depth_maps : 0.0;
-  summary["mapping_per_cycle"] = counts.PerCycleJson(cycles);
-  for (const auto& [stage, s] : timings.Summary()) {
-    summary["stages"][stage] = {{"median_ms", s.median_ms},
-                                {"p95_ms", s.p95_ms},
-                                {"calls", s.calls},
-                                {"median_items", s.median_items},
-                                {"total_s", s.total_s}};
+      AttachGroundTruth(*opened, options.gt_poses || options.gt_map, &recorder, &gt_list));
+  geometry::PoseBuffer gt_poses(0);
+  for (const geometry::StampedPose& p : gt_list)
+    AAVIO_RETURN_IF_ERROR(gt_poses.Insert(p.t_ns, p.T_world_body));
+
+  // The front end of the mode, fed packet by packet.
+  Status callback_status = Status::Ok();
+  auto keep = [&](const Status& s) {
+    if (callback_status.ok()) callback_status = s;
+  };
+  std::optional<pipeline::Odometry> odometry;
+  std::optional<pipeline::MappingFrontEnd> mapping;
+  std::optional<GroundTruthMaps> gt_maps;
+  if (options.gt_poses) {
+    mapping.emplace(rig, *config, gt_poses, begin);
+    mapping->on_tick = [&](TimeNs t_ns, const events::RepresentationTimings& t) {
+      recorder.AddMappingTick(t_ns, t);
+    };
+    mapping->on_cycle = [&](const pipeline::MappingCycle& c) { keep(recorder.AddMappingCycle(c)); };
+  } else {
+    geometry::RigidTransform start_pose;
+    if (options.gt_map) {
+      Expected<GroundTruthMaps> maps = GroundTruthMaps::Create(*opened, gt_poses);
+      if (!maps) return maps.status();
+      gt_maps.emplace(std::move(*maps));
+      Expected<geometry::RigidTransform> at_start = gt_poses.Query(begin);
+      if (!at_start) return at_start.status().WithContext("ground truth at the start");
+      start_pose = *at_start;
+    }
+    odometry.emplace(rig, *config, begin, start_pose, /*run_mapping=*/!options.gt_map);
+    odometry->on_tick = [&](const pipeline::OdometryTick& t) { keep(recorder.AddTick(t)); };
+    if (gt_maps) {
+      odometry->before_tick = [&](const events::Observation& obs) {
+        Expected<std::shared_ptr<tracking::TrackingMap>> map = gt_maps->MapFor(obs);
+        if (!map) return keep(map.status());
+        if (*map) odometry->SetTrackingMap(std::move(*map));
+      };
+    }
   }
-  const eval::DepthErrorSummary depth = depth_all.Summary();
-  if (!gt_depth.empty()) {
-    summary["depth"] = DepthJson(depth);
-    summary["depth"]["sample_ceiling"] = CoverageJson(ceiling.Summary());
+
+  // Files are decoded on a thread of their own, up to 50 packets ahead.
+  io::PrefetchingReader prefetching(reader, 50);
+  const bool progress = !options.quiet && isatty(STDERR_FILENO);
+  const auto wall_start = Clock::now();
+  io::SensorPacket packet;
+  bool interrupted = false;
+  TimeNs last_t = begin;
+  g_interrupted.store(false);
+  auto previous = std::signal(SIGINT, OnInterrupt);
+  Status loop_status = Status::Ok();
+  for (std::int64_t packets = 0;; ++packets) {
+    if (g_interrupted.load()) {
+      interrupted = true;
+      break;
+    }
+    const auto read_start = Clock::now();
+    Expected<bool> more = prefetching.Next(&packet);
+    if (!more) {
+      loop_status = more.status();
+      break;
+    }
+    if (!*more || packet.t_begin_ns >= end) break;
+    const std::size_t events = packet.left.size() + packet.right.size();
+    recorder.AddPacket(
+        events, std::chrono::duration<double, std::milli>(Clock::now() - read_start).count());
+    const TimeNs t_end = std::min(packet.t_end_ns, end);
+    if (odometry) {
+      loop_status = odometry->Process(packet.left, packet.right, packet.imu, t_end);
+      recorder.AddStage("event_insertion", odometry->last_insertion_ms(),
+                        static_cast<double>(events));
+    } else {
+      loop_status = mapping->Process(packet.left, packet.right, t_end);
+    }
+    if (loop_status.ok()) loop_status = callback_status;
+    if (!loop_status.ok()) break;
+    last_t = t_end;
+    if (progress && packets % 50 == 0) {
+      const double done = NsToSeconds(last_t - begin);
+      const double wall = std::chrono::duration<double>(Clock::now() - wall_start).count();
+      const std::map<std::string, int>& counts = recorder.status_counts();
+      ctx.err << StrFormat("\r%s %.1f / %.1f s of data, %.2fx real time",
+                           recorder_options.mode.c_str(), done, NsToSeconds(end - begin),
+                           wall > 0 ? done / wall : 0.0);
+      if (odometry)
+        ctx.err << StrFormat(", tracking ok %d, lost %d", counts.count("ok") ? counts.at("ok") : 0,
+                             counts.count("lost") ? counts.at("lost") : 0);
+      ctx.err << "   " << std::flush;
+    }
   }
-  AAVIO_RETURN_IF_ERROR(io::WriteTextFile((fs::path(options.out_dir) / "summary.json").string(),
-                                          summary.dump(2) + "\n"));
-  ctx.out << StrFormat(
-      "mapped %.2f s of data in %.1f s (real-time factor %.2f): %lld cycles, %.0f "
-      "map points on average\n",
-      data_s, wall_s, wall_s > 0.0 ? data_s / wall_s : 0.0, static_cast<long long>(cycles),
-      cycles > 0 ? static_cast<double>(map_points_sum) / cycles : 0.0);
-  if (!gt_depth.empty()) ctx.out << DepthTable(depth) << SampleCeilingLine(ceiling.Summary());
-  ctx.out << "wrote " << options.out_dir << "/{config.yaml,summary.json}\n";
+  std::signal(SIGINT, previous);
+  if (progress) ctx.err << "\r" << std::string(90, ' ') << "\r";
+  AAVIO_RETURN_IF_ERROR(loop_status);
+  odometry.reset();  // a mapping cycle still running finishes here
+
+  nlohmann::json extra = nlohmann::json::object();
+  std::optional<RelativeError100Ms> tracking_error;
+  if (options.gt_map) {
+    tracking_error = RelativeErrorOver100Ms(recorder.trajectory(), gt_poses);
+    extra["gyro_prior"] = config->imu.use_gyro_prior;
+    extra["rpe_100ms"] = {{"rotation_deg_rmse", tracking_error->rotation_deg_rmse},
+                          {"translation_m_rmse", tracking_error->translation_m_rmse},
+                          {"pairs", tracking_error->pairs}};
+  }
+  Expected<recording::RunRecord> record = recorder.Finish(interrupted, last_t, extra);
+  if (!record) return record.status();
+
+  const nlohmann::json& s = record->summary;
+  if (options.gt_poses) {
+    ctx.out << StrFormat(
+        "%smapped %.2f s of data in %.1f s (real-time factor %.2f): %d cycles, %.0f map points "
+        "per depth map\n",
+        interrupted ? "interrupted: " : "", record->data_s, record->wall_s,
+        s["real_time_factor"].get<double>(), s["mapping_cycles"].get<int>(),
+        s["mean_map_points"].get<double>());
+  } else {
+    PrintOdometryRun(*record, ctx);
+  }
+  if (tracking_error) {
+    ctx.out << StrFormat(
+        "tracked against ground-truth maps (gyroscope prior %s): RPE over 100 ms: rotation "
+        "%.4f deg, translation %.4f m (RMSE)\n",
+        config->imu.use_gyro_prior ? "on" : "off", tracking_error->rotation_deg_rmse,
+        tracking_error->translation_m_rmse);
+  }
+  if (record->depth) ctx.out << recording::DepthTable(*record->depth);
+  if (record->sample_ceiling) ctx.out << recording::SampleCeilingLine(*record->sample_ceiling);
+  ctx.out << "wrote " << options.out_dir << "/{"
+          << (recorder.trajectory().empty() ? "" : "stamped_traj_estimate.txt,timings.csv,")
+          << "summary.json,config.yaml,map.ply"
+          << (s["depth_maps_written"].get<int>() > 0 ? ",depth/" : "") << "}\n";
   return Status::Ok();
 }
 
 }  // namespace
-
 void RegisterRun(CLI::App& app, Context& ctx) {
   auto options = std::make_shared<RunOptions>();
   CLI::App* sub = app.add_subcommand(

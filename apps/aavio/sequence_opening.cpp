@@ -19,4 +19,10 @@ Expected<OpenedSequence> OpenSequence(const std::string& path, const std::string
   return OpenedSequence{std::move(*description), std::move(*loaded), std::move(*reader)};
 }
 
+Expected<recording::RunGroundTruth> LoadRunGroundTruth(const std::string& path) {
+  Expected<OpenedSequence> opened = OpenSequence(path, "");
+  if (!opened) return opened.status();
+  return recording::RunGroundTruth::Of(opened->description, opened->calibration.rig);
+}
+
 }  // namespace aavio::cli

@@ -8,6 +8,7 @@
 #include "aavio/common/status.hpp"
 #include "aavio/io/calibration.hpp"
 #include "aavio/io/sequence.hpp"
+#include "aavio/recording/run_evaluation.hpp"
 
 namespace aavio::cli {
 
@@ -18,5 +19,8 @@ struct OpenedSequence {
 };
 
 Expected<OpenedSequence> OpenSequence(const std::string& path, const std::string& calibration);
+
+/// The ground truth the sequence at `path` names, for evaluating a run of it.
+Expected<recording::RunGroundTruth> LoadRunGroundTruth(const std::string& path);
 
 }  // namespace aavio::cli

@@ -15,8 +15,10 @@
 #include "aavio/eval/relative_error.hpp"
 #include "aavio/eval/trajectory_error.hpp"
 #include "aavio/geometry/pose_buffer.hpp"
+#include "aavio/geometry/stereo_rig.hpp"
+#include "aavio/io/sequence.hpp"
 
-namespace aavio::cli {
+namespace aavio::recording {
 
 struct TrajectoryEvalOptions {
   eval::Alignment alignment = eval::Alignment::kSe3;  ///< stereo VO: se3 (design.md §6)
@@ -40,18 +42,20 @@ Expected<TrajectoryEvaluation> EvaluateTrajectories(
 
 /// The ground truth a sequence names, as evaluating a run of it needs it.
 struct RunGroundTruth {
-  std::string sequence;         ///< its sequence.yaml (or folder)
-  std::string trajectory_path;  ///< TUM text
-  std::string depth_dir;        ///< empty when the sequence has no ground-truth depth
-  eval::PinholeCamera camera;   ///< the rectified left camera
+  std::string sequence;                     ///< its sequence.yaml (or folder)
+  std::string trajectory_path;              ///< TUM text
+  std::string depth_dir;                    ///< empty when the sequence has no ground-truth depth
+  eval::PinholeCamera camera;               ///< the rectified left camera
   double fb = 0.0, disparity_offset = 0.0;  ///< for disparity-PNG ground truth (DSEC)
+
+  /// From a sequence's description and its calibration; an error says why there is nothing to
+  /// evaluate against (no ground-truth trajectory, or one that is not TUM text).
+  static Expected<RunGroundTruth> Of(const io::SequenceDescription& sequence,
+                                     const geometry::StereoRig& rig);
 };
 
-Expected<RunGroundTruth> LoadRunGroundTruth(const std::string& sequence);
-
 /// Scores every depth map of `run_depth_dir` (`timestamps.txt` + `disparity_INDEX.png` or
-/// `depth_INDEX.tiff`, the layout `aavio run` and `aavio simulate` share) against the ground-truth frame nearest in time (within
-/// 25 ms; the camera's true motion between the two stamps from `gt_poses`).
+/// `depth_INDEX.tiff`, the layout `aavio run` and `aavio simulate` share) as DepthScorer does.
 Expected<eval::DepthErrorAccumulator> EvaluateRunDepth(
     const std::string& run_depth_dir, const RunGroundTruth& truth,
     const std::vector<geometry::StampedPose>& gt_poses);
@@ -69,4 +73,4 @@ nlohmann::json CoverageJson(const eval::DepthErrorSummary& s);
 /// One line: what the edge samples would cover at their true depth (eval::SampleCeiling).
 std::string SampleCeilingLine(const eval::DepthErrorSummary& ceiling);
 
-}  // namespace aavio::cli
+}  // namespace aavio::recording

@@ -1,4 +1,4 @@
-#include "run_evaluation.hpp"
+#include "aavio/recording/run_evaluation.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,13 +7,13 @@
 #include "aavio/common/format.hpp"
 #include "aavio/io/ground_truth_depth.hpp"
 #include "aavio/mapping/rectified_stereo.hpp"
-#include "sequence_opening.hpp"
+#include "aavio/recording/depth_scorer.hpp"
 
-namespace aavio::cli {
+namespace aavio::recording {
 namespace {
 
 nlohmann::json StatsJson(const eval::ErrorStatistics& s) {
-  return {{"rmse", s.rmse}, {"mean", s.mean}, {"median", s.median}, {"std", s.std},
+  return {{"rmse", s.rmse}, {"mean", s.mean}, {"median", s.median},  {"std", s.std},
           {"min", s.min},   {"max", s.max},   {"samples", s.samples}};
 }
 
@@ -40,8 +40,8 @@ Expected<TrajectoryEvaluation> EvaluateTrajectories(
     const std::vector<geometry::StampedPose>& ground_truth, const TrajectoryEvalOptions& options) {
   AAVIO_RETURN_IF_ERROR(options.rpe.Validate());
   if (!(options.max_dt_s > 0.0 && options.max_dt_s < 10.0))
-    return InvalidArgument(StrFormat("association window %g s: give a value in (0, 10) s",
-                                     options.max_dt_s));
+    return InvalidArgument(
+        StrFormat("association window %g s: give a value in (0, 10) s", options.max_dt_s));
   if (estimate.empty()) return InvalidArgument("the estimate has no poses");
   if (ground_truth.size() < 2) return InvalidArgument("the ground truth has fewer than 2 poses");
   TrajectoryEvaluation e;
@@ -51,21 +51,21 @@ Expected<TrajectoryEvaluation> EvaluateTrajectories(
   if (!pairs) return pairs.status();
   e.pairs = std::move(*pairs);
   for (std::size_t i = 1; i < ground_truth.size(); ++i)
-    e.gt_path_length_m += (ground_truth[i].T_world_body.t - ground_truth[i - 1].T_world_body.t).norm();
-  e.absolute =
-      eval::EvaluateTrajectory(e.pairs, options.alignment, options.rpe_step_s, options.align_frames);
+    e.gt_path_length_m +=
+        (ground_truth[i].T_world_body.t - ground_truth[i - 1].T_world_body.t).norm();
+  e.absolute = eval::EvaluateTrajectory(e.pairs, options.alignment, options.rpe_step_s,
+                                        options.align_frames);
   e.relative = eval::ComputeRelativeError(e.pairs, e.gt_path_length_m, e.absolute.alignment.scale,
                                           options.rpe);
   return e;
 }
 
-Expected<RunGroundTruth> LoadRunGroundTruth(const std::string& sequence) {
-  Expected<OpenedSequence> opened = OpenSequence(sequence, "");
-  if (!opened) return opened.status();
-  const io::SequenceDescription& d = opened->description;
+Expected<RunGroundTruth> RunGroundTruth::Of(const io::SequenceDescription& d,
+                                            const geometry::StereoRig& rig) {
   if (!d.gt_trajectory) {
-    return InvalidArgument(d.origin + ": names no ground_truth.trajectory, so there is nothing "
-                                      "to evaluate against (use --est/--gt with a file of yours)");
+    return InvalidArgument(d.origin +
+                           ": names no ground_truth.trajectory, so there is nothing "
+                           "to evaluate against (use --est/--gt with a file of yours)");
   }
   if (d.gt_trajectory->format != io::SourceFormat::kText) {
     return InvalidArgument(d.gt_trajectory->path +
@@ -76,8 +76,7 @@ Expected<RunGroundTruth> LoadRunGroundTruth(const std::string& sequence) {
   truth.sequence = d.origin;
   truth.trajectory_path = d.gt_trajectory->path;
   truth.depth_dir = d.gt_depth;
-  const mapping::RectifiedStereo stereo =
-      mapping::RectifiedStereo::FromRig(opened->calibration.rig);
+  const mapping::RectifiedStereo stereo = mapping::RectifiedStereo::FromRig(rig);
   truth.camera = {stereo.width, stereo.height, stereo.f, stereo.cx_left, stereo.cy, stereo.fb()};
   truth.fb = stereo.fb();
   truth.disparity_offset = stereo.cx_left - stereo.cx_right;
@@ -86,61 +85,27 @@ Expected<RunGroundTruth> LoadRunGroundTruth(const std::string& sequence) {
 
 Expected<eval::DepthErrorAccumulator> EvaluateRunDepth(
     const std::string& estimate_dir, const RunGroundTruth& truth,
-    const std::vector<geometry::StampedPose>& gt_pose_list) {
-  const std::string& gt_dir = truth.depth_dir;
-  const eval::PinholeCamera& camera = truth.camera;
-  geometry::PoseBuffer gt_poses(0);
-  for (const geometry::StampedPose& p : gt_pose_list)
-    AAVIO_RETURN_IF_ERROR(gt_poses.Insert(p.t_ns, p.T_world_body));
+    const std::vector<geometry::StampedPose>& gt_poses) {
+  Expected<DepthScorer> scorer = DepthScorer::Create(truth, gt_poses);
+  if (!scorer) return scorer.status();
   Expected<std::vector<io::GtDepthEntry>> estimates = io::ReadGtDepthIndex(estimate_dir);
   if (!estimates) return estimates.status();
-  Expected<std::vector<io::GtDepthEntry>> frames = io::ReadGtDepthIndex(gt_dir);
-  if (!frames) return frames.status();
-  eval::DepthErrorAccumulator accumulator(camera);
   for (const io::GtDepthEntry& est : *estimates) {
-    auto it = std::lower_bound(frames->begin(), frames->end(), est.t_ns,
-                               [](const io::GtDepthEntry& e, TimeNs t) { return e.t_ns < t; });
-    const io::GtDepthEntry* best = nullptr;
-    for (auto c : {it, it == frames->begin() ? it : it - 1}) {
-      if (c == frames->end()) continue;
-      if (!best || std::llabs(c->t_ns - est.t_ns) < std::llabs(best->t_ns - est.t_ns)) best = &*c;
-    }
-    if (!best || std::llabs(best->t_ns - est.t_ns) > 25 * kNsPerMs) continue;
-    Expected<geometry::RigidTransform> T_world_est_cam = gt_poses.Query(est.t_ns);
-    Expected<geometry::RigidTransform> T_world_gt_cam = gt_poses.Query(best->t_ns);
-    if (!T_world_est_cam || !T_world_gt_cam) continue;  // outside the ground truth's time range
     Expected<io::GtDepthFrame> estimate =
         io::LoadGtDepthFrame(estimate_dir, est, truth.fb, truth.disparity_offset);
     if (!estimate) return estimate.status();
-    if (estimate->depth_m.cols != camera.width || estimate->depth_m.rows != camera.height) {
-      return InvalidArgument(StrFormat(
-          "%s/disparity_%s.png: %dx%d pixels, but the sequence's camera is %dx%d (is this run of "
-          "that sequence?)",
-          estimate_dir.c_str(), est.index.c_str(), estimate->depth_m.cols, estimate->depth_m.rows,
-          camera.width, camera.height));
+    Expected<bool> scored = scorer->AddDepthImage(est.t_ns, estimate->depth_m);
+    if (!scored) {
+      return scored.status().WithContext(
+          StrFormat("%s/disparity_%s.png", estimate_dir.c_str(), est.index.c_str()));
     }
-    Expected<io::GtDepthFrame> frame =
-        io::LoadGtDepthFrame(gt_dir, *best, truth.fb, truth.disparity_offset);
-    if (!frame) return frame.status();
-    // The estimate's points in its camera; that camera is the "world" of the accumulator, and the
-    // ground-truth frame's camera sits at the true motion between the two stamps.
-    std::vector<Eigen::Vector3d> points;
-    for (int v = 0; v < estimate->depth_m.rows; ++v) {
-      const float* row = estimate->depth_m.ptr<float>(v);
-      for (int u = 0; u < estimate->depth_m.cols; ++u) {
-        const double z = row[u];
-        if (z > 0.0 && std::isfinite(z))
-          points.emplace_back((u - camera.cx) / camera.f * z, (v - camera.cy) / camera.f * z, z);
-      }
-    }
-    accumulator.Add(points, frame->depth_m, frame->edges,
-                    T_world_est_cam->Inverse() * *T_world_gt_cam);
   }
-  if (accumulator.Summary().frames == 0) {
-    return InvalidArgument(estimate_dir + ": no depth map has a ground-truth frame of " + gt_dir +
+  if (scorer->accumulator().Summary().frames == 0) {
+    return InvalidArgument(estimate_dir + ": no depth map has a ground-truth frame of " +
+                           truth.depth_dir +
                            " within 25 ms (are they of the same sequence and clock?)");
   }
-  return accumulator;
+  return scorer->accumulator();
 }
 
 nlohmann::json TrajectoryEvaluationJson(const TrajectoryEvaluation& e) {
@@ -155,26 +120,26 @@ nlohmann::json TrajectoryEvaluationJson(const TrajectoryEvaluation& e) {
                    {"rot_deg_per_m", StatsJson(s.rot_deg_per_m_stats)},
                    {"yaw_deg", StatsJson(s.yaw_deg_stats)}});
   }
-  return {{"align", eval::AlignmentName(e.options.alignment)},
-          {"align_frames", e.options.align_frames},
-          {"scale", a.alignment.scale},
-          {"pairs", a.pairs},
-          {"path_length_m", e.gt_path_length_m},
-          {"matched_path_length_m", a.path_length_m},
-          {"ate_rmse_m", a.ate_rmse_m},
-          {"ate_mean_m", a.ate_mean_m},
-          {"ate_median_m", a.ate_median_m},
-          {"ate_max_m", a.ate_max_m},
-          {"ate_percent_of_path",
-           a.path_length_m > 0.0 ? 100.0 * a.ate_rmse_m / a.path_length_m : 0.0},
-          {"ate_rot_rmse_deg", a.ate_rotation_rmse_deg},
-          {"rpe_trans_pct", e.relative.trans_pct_rmse},
-          {"rpe_rot_deg_per_m", e.relative.rot_deg_per_m_rmse},
-          {"rpe_samples", e.relative.samples},
-          {"rpe", rpe},
-          {"rpe_step_s", a.rpe_step_s},
-          {"rpe_step_trans_rmse_m", a.rpe_translation_rmse_m},
-          {"rpe_step_rot_rmse_deg", a.rpe_rotation_rmse_deg}};
+  return {
+      {"align", eval::AlignmentName(e.options.alignment)},
+      {"align_frames", e.options.align_frames},
+      {"scale", a.alignment.scale},
+      {"pairs", a.pairs},
+      {"path_length_m", e.gt_path_length_m},
+      {"matched_path_length_m", a.path_length_m},
+      {"ate_rmse_m", a.ate_rmse_m},
+      {"ate_mean_m", a.ate_mean_m},
+      {"ate_median_m", a.ate_median_m},
+      {"ate_max_m", a.ate_max_m},
+      {"ate_percent_of_path", a.path_length_m > 0.0 ? 100.0 * a.ate_rmse_m / a.path_length_m : 0.0},
+      {"ate_rot_rmse_deg", a.ate_rotation_rmse_deg},
+      {"rpe_trans_pct", e.relative.trans_pct_rmse},
+      {"rpe_rot_deg_per_m", e.relative.rot_deg_per_m_rmse},
+      {"rpe_samples", e.relative.samples},
+      {"rpe", rpe},
+      {"rpe_step_s", a.rpe_step_s},
+      {"rpe_step_trans_rmse_m", a.rpe_translation_rmse_m},
+      {"rpe_step_rot_rmse_deg", a.rpe_rotation_rmse_deg}};
 }
 
 nlohmann::json CoverageJson(const eval::DepthErrorSummary& s) {
@@ -219,24 +184,28 @@ std::string TrajectoryEvaluationTable(const TrajectoryEvaluation& e) {
   std::string s = StrFormat(
       "%zu pose pairs (within %.0f ms), aligned %s%s, ground-truth path %.3f m (%.3f m matched)\n",
       a.pairs, 1e3 * e.options.max_dt_s, eval::AlignmentName(e.options.alignment),
-      e.options.alignment == eval::Alignment::kSim3 ? StrFormat(" (scale %.4f)", a.alignment.scale).c_str()
-                                                    : "",
+      e.options.alignment == eval::Alignment::kSim3
+          ? StrFormat(" (scale %.4f)", a.alignment.scale).c_str()
+          : "",
       e.gt_path_length_m, a.path_length_m);
-  s += StrFormat("ATE  rmse %.4f m (%.2f %% of the path)  mean %.4f  median %.4f  max %.4f m  "
-                 "rotation rmse %.3f deg\n",
-                 a.ate_rmse_m, a.path_length_m > 0 ? 100.0 * a.ate_rmse_m / a.path_length_m : 0.0,
-                 a.ate_mean_m, a.ate_median_m, a.ate_max_m, a.ate_rotation_rmse_deg);
-  s += StrFormat("RPE  (ESVO papers' form, rmse over %zu sub-trajectories) translation %.3f %%  "
-                 "rotation %.4f deg/m\n",
-                 e.relative.samples, e.relative.trans_pct_rmse, e.relative.rot_deg_per_m_rmse);
+  s += StrFormat(
+      "ATE  rmse %.4f m (%.2f %% of the path)  mean %.4f  median %.4f  max %.4f m  "
+      "rotation rmse %.3f deg\n",
+      a.ate_rmse_m, a.path_length_m > 0 ? 100.0 * a.ate_rmse_m / a.path_length_m : 0.0,
+      a.ate_mean_m, a.ate_median_m, a.ate_max_m, a.ate_rotation_rmse_deg);
+  s += StrFormat(
+      "RPE  (ESVO papers' form, rmse over %zu sub-trajectories) translation %.3f %%  "
+      "rotation %.4f deg/m\n",
+      e.relative.samples, e.relative.trans_pct_rmse, e.relative.rot_deg_per_m_rmse);
   s += "RPE  (rpg_trajectory_evaluation form, per sub-trajectory length; median [rmse])\n";
   s += "     length [m]  samples   trans [m]            trans [%]          rot [deg]          "
        "yaw [deg]\n";
   for (const eval::SubTrajectoryErrors& r : e.relative.per_length) {
-    s += StrFormat("     %10.2f  %7zu   %8.4f [%8.4f]  %7.3f [%7.3f]  %7.3f [%7.3f]  %7.3f [%7.3f]\n",
-                   r.length_m, r.trans_m.size(), r.trans_m_stats.median, r.trans_m_stats.rmse,
-                   r.trans_pct_stats.median, r.trans_pct_stats.rmse, r.rot_deg_stats.median,
-                   r.rot_deg_stats.rmse, r.yaw_deg_stats.median, r.yaw_deg_stats.rmse);
+    s += StrFormat(
+        "     %10.2f  %7zu   %8.4f [%8.4f]  %7.3f [%7.3f]  %7.3f [%7.3f]  %7.3f [%7.3f]\n",
+        r.length_m, r.trans_m.size(), r.trans_m_stats.median, r.trans_m_stats.rmse,
+        r.trans_pct_stats.median, r.trans_pct_stats.rmse, r.rot_deg_stats.median,
+        r.rot_deg_stats.rmse, r.yaw_deg_stats.median, r.yaw_deg_stats.rmse);
   }
   s += StrFormat("RPE  over %.2f s steps: translation rmse %.4f m, rotation rmse %.4f deg\n",
                  a.rpe_step_s, a.rpe_translation_rmse_m, a.rpe_rotation_rmse_deg);
@@ -266,4 +235,4 @@ std::string SampleCeilingLine(const eval::DepthErrorSummary& c) {
       100.0 * c.block_coverage);
 }
 
-}  // namespace aavio::cli
+}  // namespace aavio::recording

@@ -1,7 +1,8 @@
 #pragma once
 /// summary.json `mapping_per_cycle`: a mapping cycle's candidates, matches and points of each
 /// kind of stereo, the cycles with a temporal partner, and where temporal candidates were lost
-/// (docs/mapping.md), averaged over a run's mapping cycles. `aavio run` writes it in both modes.
+/// (docs/mapping.md), averaged over a run's mapping cycles. `aavio run` writes it in every mode
+/// that maps.
 
 #include <cstdint>
 #include <map>
@@ -10,7 +11,7 @@
 
 #include "aavio/mapping/mapper.hpp"
 
-namespace aavio::cli {
+namespace aavio::recording {
 
 class MappingCounts {
  public:
@@ -23,4 +24,4 @@ class MappingCounts {
   std::map<std::string, double> sums_;
 };
 
-}  // namespace aavio::cli
+}  // namespace aavio::recording

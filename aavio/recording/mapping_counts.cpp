@@ -1,8 +1,8 @@
-#include "mapping_counts.hpp"
+#include "aavio/recording/mapping_counts.hpp"
 
 #include <utility>
 
-namespace aavio::cli {
+namespace aavio::recording {
 
 void MappingCounts::Add(const mapping::MappingCycleReport& r) {
   for (const auto& [name, value] :
@@ -29,4 +29,4 @@ nlohmann::json MappingCounts::PerCycleJson(std::int64_t cycles) const {
   return j;
 }
 
-}  // namespace aavio::cli
+}  // namespace aavio::recording

@@ -1,0 +1,47 @@
+#include "aavio/io/depth_folder_writer.hpp"
+
+#include <filesystem>
+#include <opencv2/imgcodecs.hpp>
+
+#include "aavio/common/format.hpp"
+#include "aavio/io/config_yaml.hpp"
+
+namespace aavio::io {
+
+namespace fs = std::filesystem;
+
+Expected<DepthFolderWriter> DepthFolderWriter::Create(const std::string& dir) {
+  std::error_code ec;
+  fs::remove_all(dir, ec);
+  if (ec) return IoError(dir + ": cannot remove the earlier maps (" + ec.message() + ")");
+  fs::create_directories(dir, ec);
+  if (ec) return IoError(dir + ": cannot create the folder (" + ec.message() + ")");
+  return DepthFolderWriter(dir);
+}
+
+Expected<std::string> DepthFolderWriter::Add(TimeNs t_ns, const cv::Mat& disparity,
+                                             const cv::Mat& picture) {
+  if (disparity.type() != CV_16UC1)
+    return InvalidArgument("DepthFolderWriter: the disparity image must be CV_16UC1");
+  const std::string index = StrFormat("%06d", count_);
+  const std::string disparity_png = (fs::path(dir_) / ("disparity_" + index + ".png")).string();
+  if (!cv::imwrite(disparity_png, disparity)) return IoError(disparity_png + ": cannot write");
+  if (!picture.empty()) {
+    const std::string picture_png = (fs::path(dir_) / ("inverse_depth_" + index + ".png")).string();
+    if (!cv::imwrite(picture_png, picture)) return IoError(picture_png + ": cannot write");
+  }
+  stamps_ += StrFormat("%.9f %s\n", NsToSeconds(t_ns), index.c_str());
+  ++count_;
+  return index;
+}
+
+Status DepthFolderWriter::Finish() {
+  if (count_ == 0) {  // no map: no folder, rather than an index that lists nothing
+    std::error_code ec;
+    fs::remove_all(dir_, ec);
+    return Status::Ok();
+  }
+  return WriteTextFile((fs::path(dir_) / "timestamps.txt").string(), stamps_);
+}
+
+}  // namespace aavio::io

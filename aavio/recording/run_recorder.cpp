@@ -1,0 +1,296 @@
+#include "aavio/recording/run_recorder.hpp"
+
+#include <chrono>
+#include <filesystem>
+
+#include "aavio/common/format.hpp"
+#include "aavio/io/config_yaml.hpp"
+#include "aavio/io/ground_truth_depth.hpp"
+#include "aavio/io/ply.hpp"
+#include "aavio/io/trajectory_io.hpp"
+
+namespace aavio::recording {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+double MsSince(Clock::time_point t) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
+}
+
+// Resident set size now and at its peak [MB] (Linux /proc; 0 elsewhere).
+std::pair<double, double> MemoryMb() {
+  std::ifstream in("/proc/self/status");
+  std::string key;
+  double rss = 0.0, peak = 0.0, kb = 0.0;
+  while (in >> key) {
+    if (key == "VmRSS:" && in >> kb) rss = kb / 1024.0;
+    if (key == "VmHWM:" && in >> kb) peak = kb / 1024.0;
+  }
+  return {rss, peak};
+}
+
+const char* StatusName(tracking::TrackingStatus s) {
+  switch (s) {
+    case tracking::TrackingStatus::kOk:
+      return "ok";
+    case tracking::TrackingStatus::kLost:
+      return "lost";
+    case tracking::TrackingStatus::kNoMap:
+      return "no_map";
+  }
+  return "?";
+}
+
+// The files a run writes, removed before a new run writes into the same folder.
+constexpr const char* kRunFiles[] = {"stamped_traj_estimate.txt", "summary.json", "timings.csv",
+                                     "config.yaml", "map.ply"};
+
+}  // namespace
+
+RunRecorder::RunRecorder(RunRecorderOptions options, const geometry::StereoRig& rig,
+                         const pipeline::OdometryConfig& config, io::DepthFolderWriter depth_writer)
+    : options_(std::move(options)),
+      config_(config),
+      stereo_(mapping::RectifiedStereo::FromRig(rig)),
+      wall_start_(Clock::now()),
+      depth_writer_(std::move(depth_writer)),
+      // Every `depth_every_` confirmed maps (5 per second at the presets' 20 Hz) one goes to
+      // depth/.
+      depth_every_(std::max(1, static_cast<int>(std::lround(config.mapping.rate_hz / 5.0)))),
+      // map.ply: points up to the far end of the depth range (at most 50 m) on voxels of 0.5 % of
+      // it (rpg 0.5–5 m: 2.5 cm; DSEC: 25 cm).
+      cloud_depth_m_(std::min(1.0 / config.mapping.inv_depth_min, 50.0)),
+      cloud_(0.005 * cloud_depth_m_),
+      colours_(config.mapping.inv_depth_min, config.mapping.inv_depth_max) {}
+
+Expected<std::unique_ptr<RunRecorder>> RunRecorder::Open(RunRecorderOptions options,
+                                                         const geometry::StereoRig& rig,
+                                                         const pipeline::OdometryConfig& config) {
+  const fs::path out(options.out_dir);
+  std::error_code ec;
+  fs::create_directories(out, ec);
+  if (ec) return IoError(options.out_dir + ": cannot create the folder (" + ec.message() + ")");
+  for (const char* file : kRunFiles) {
+    fs::remove(out / file, ec);
+    if (ec) return IoError((out / file).string() + ": cannot remove an earlier run's file");
+  }
+  Expected<io::DepthFolderWriter> depth = io::DepthFolderWriter::Create((out / "depth").string());
+  if (!depth) return depth.status();
+  std::unique_ptr<RunRecorder> recorder(
+      new RunRecorder(std::move(options), rig, config, std::move(*depth)));
+  return recorder;
+}
+
+Status RunRecorder::SetGroundTruth(const RunGroundTruth& truth,
+                                   std::vector<geometry::StampedPose> gt_poses) {
+  truth_ = truth;
+  gt_poses_ = std::move(gt_poses);
+  if (truth.depth_dir.empty()) return Status::Ok();
+  Expected<DepthScorer> scorer = DepthScorer::Create(truth, gt_poses_);
+  if (!scorer) return scorer.status();
+  scorer_.emplace(std::move(*scorer));
+  const eval::PinholeCamera& c = truth.camera;
+  // What the map could cover at best: its cycles' samples at their true depth (runs on
+  // ground-truth poses).
+  ceiling_.emplace(eval::PinholeCamera{c.width, c.height, c.f, c.cx, c.cy},
+                   1.0 / config_.mapping.inv_depth_max, 1.0 / config_.mapping.inv_depth_min,
+                   config_.mapping.fusion.radius == 0 ? 2 : 3);
+  return Status::Ok();
+}
+
+void RunRecorder::AddPacket(std::size_t events, double reading_ms) {
+  events_ += static_cast<std::int64_t>(events);
+  timings_.Add("event_reading", reading_ms, static_cast<double>(events));
+}
+
+void RunRecorder::AddRepresentation(TimeNs t_ns, const events::RepresentationTimings& t) {
+  ++ticks_;
+  timings_.Add("time_surface", t.time_surface_ms);
+  timings_.Add("ts_derived", t.derived_ms);
+  if (t.edges) {  // mapping ticks only
+    timings_.Add("aa_map", t.aa_ms);
+    timings_.Add("sampling", t.sampling_ms);
+  }
+  if (ticks_ % 100 == 0)
+    rss_over_time_.push_back({NsToSeconds(t_ns - options_.begin_ns), MemoryMb().first});
+}
+
+void RunRecorder::AddCycleReport(const mapping::MappingCycleReport& r) {
+  mapping_counts_.Add(r);
+  timings_.Add("matching", r.matching_ms, r.static_candidates + r.temporal_candidates);
+  timings_.Add("depth_refinement", r.refinement_ms, r.static_matches + r.temporal_matches);
+  timings_.Add("fusion", r.fusion_ms, r.map_points);
+  timings_.Add("mapping_total", r.total_ms, r.samples);
+}
+
+Status RunRecorder::AddConfirmedMap(const mapping::LocalMap& map, bool score_written) {
+  cloud_.Add(map, cloud_depth_m_);
+  ++confirmed_maps_;
+  confirmed_points_ += map.points.size();
+  if ((confirmed_maps_ - 1) % depth_every_ != 0) return Status::Ok();
+  const cv::Mat disparity = DisparityImage(map, stereo_);
+  Expected<std::string> index = depth_writer_.Add(
+      map.t_ns, disparity, InverseDepthPicture(map, stereo_.width, stereo_.height, colours_));
+  if (!index) return index.status();
+  if (!score_written || !scorer_) return Status::Ok();
+  // Scored as `aavio eval --run` scores the file: the same disparities, turned into depth.
+  const auto start = Clock::now();
+  Expected<bool> scored = scorer_->AddDepthImage(
+      map.t_ns, io::DepthFromDisparityImage(disparity, truth_->fb, truth_->disparity_offset));
+  evaluation_ms_ += MsSince(start);
+  return scored.status();
+}
+
+Status RunRecorder::AddTick(const pipeline::OdometryTick& t) {
+  AddRepresentation(t.t_ns, t.representation);
+  trajectory_.push_back({t.t_ns, t.T_world_cam});
+  status_counts_[StatusName(t.status)]++;
+  if (t.status == tracking::TrackingStatus::kLost)
+    lost_reasons_[tracking::LostReasonName(t.lost_reason)]++;
+  if (t.status != tracking::TrackingStatus::kNoMap) {
+    timings_.Add("tracking", t.tracking_ms, t.registration_iterations);
+    timings_.Add("prediction", t.prediction_ms);
+  }
+  if (t.mapping_wait_ms > 0.0) timings_.Add("mapping_wait", t.mapping_wait_ms);
+  bootstraps_ += t.bootstrap;
+  skipped_cycles_ += t.mapping_skipped;
+  reinitialisations_ += t.reinitialised;
+  mapping_cycles_ += t.mapped ? 1 : 0;
+  double mapping_ms = 0.0;
+  if (t.mapped && !t.bootstrap) {
+    AddCycleReport(t.mapping);
+    mapping_ms = t.mapping.total_ms;
+  }
+  if (t.map && t.map->confirmed)  // provisional maps are for tracking only
+    AAVIO_RETURN_IF_ERROR(AddConfirmedMap(*t.map, /*score_written=*/true));
+  if (!csv_.is_open()) {
+    csv_.open(fs::path(options_.out_dir) / "timings.csv");
+    csv_ << "t_s,status,time_surface_ms,aa_ms,sampling_ms,tracking_ms,iterations,mapping_ms,"
+            "map_points,lost_reason\n";
+  }
+  csv_ << StrFormat(
+      "%.6f,%s,%.4f,%.4f,%.4f,%.4f,%d,%.4f,%zu,%s\n", NsToSeconds(t.t_ns), StatusName(t.status),
+      t.representation.time_surface_ms, t.representation.aa_ms, t.representation.sampling_ms,
+      t.tracking_ms, t.registration_iterations, mapping_ms, t.map ? t.map->points.size() : 0,
+      t.status == tracking::TrackingStatus::kLost ? tracking::LostReasonName(t.lost_reason) : "");
+  return csv_ ? Status::Ok() : IoError(options_.out_dir + "/timings.csv: write failed");
+}
+
+void RunRecorder::AddMappingTick(TimeNs t_ns, const events::RepresentationTimings& timings) {
+  AddRepresentation(t_ns, timings);
+}
+
+Status RunRecorder::AddMappingCycle(const pipeline::MappingCycle& cycle) {
+  ++mapping_cycles_;
+  bootstraps_ += cycle.bootstrap ? 1 : 0;
+  if (!cycle.bootstrap) AddCycleReport(cycle.report);
+  const bool confirmed = cycle.map && cycle.map->confirmed;
+  if (confirmed) AAVIO_RETURN_IF_ERROR(AddConfirmedMap(*cycle.map, /*score_written=*/false));
+  // Only cycles whose samples went into the fusion count for the ceiling.
+  const bool fused = cycle.bootstrap || cycle.report.fused_cycles > 0;
+  if (!fused || !scorer_) return Status::Ok();
+  const auto start = Clock::now();
+  Expected<std::optional<DepthScorer::Frame>> nearest = scorer_->Nearest(cycle.t_ns);
+  if (!nearest) return nearest.status();
+  if (*nearest) {
+    const DepthScorer::Frame& f = **nearest;
+    // The samples as a mapping cycle takes them (an SGM bootstrap uses all of the observation's;
+    // its one cycle is counted with these), read on the ground-truth frame nearest the cycle.
+    if (cycle.bootstrap) ceiling_->Clear();
+    std::vector<Eigen::Vector2f> samples;
+    for (const events::EdgeSample& e :
+         mapping::MappingSamples(*cycle.observation, stereo_, config_.mapping))
+      samples.emplace_back(e.u, e.v);
+    ceiling_->AddCycle(samples, f.frame.depth_m, f.T_world_cam);
+    if (confirmed) {
+      scorer_->AddInWorld(f, cycle.map->points_world);
+      ceiling_->Score(cycle.bootstrap ? 1 : static_cast<std::size_t>(cycle.report.fused_cycles),
+                      f.frame.depth_m, f.frame.edges, f.T_world_cam);
+    }
+  }
+  evaluation_ms_ += MsSince(start);
+  return Status::Ok();
+}
+
+Expected<RunRecord> RunRecorder::Finish(bool interrupted, TimeNs end_ns,
+                                        const nlohmann::json& extra) {
+  RunRecord record;
+  record.wall_s = std::chrono::duration<double>(Clock::now() - wall_start_).count();
+  record.data_s = NsToSeconds(std::max(end_ns, options_.begin_ns) - options_.begin_ns);
+  const fs::path out(options_.out_dir);
+  if (csv_.is_open()) csv_.close();
+  if (!trajectory_.empty()) {
+    AAVIO_RETURN_IF_ERROR(
+        io::WriteTumTrajectory((out / "stamped_traj_estimate.txt").string(), trajectory_));
+  }
+  AAVIO_RETURN_IF_ERROR(io::WriteTextFile((out / "config.yaml").string(), options_.config_yaml));
+  std::vector<io::Rgb> rgb;
+  rgb.reserve(cloud_.points().size());
+  for (const float rho : cloud_.inv_depth()) {
+    const cv::Vec3b c = colours_(static_cast<double>(rho));
+    rgb.push_back({c[2], c[1], c[0]});
+  }
+  AAVIO_RETURN_IF_ERROR(io::WritePly((out / "map.ply").string(), cloud_.points(), rgb,
+                                     "aavio global map (world frame, metres)"));
+  AAVIO_RETURN_IF_ERROR(depth_writer_.Finish());
+
+  // Accuracy against the ground truth (what `aavio eval --run` computes, se3-aligned).
+  if (truth_ && !trajectory_.empty()) {
+    Expected<TrajectoryEvaluation> e = EvaluateTrajectories(trajectory_, gt_poses_, {});
+    if (!e) return e.status().WithContext(truth_->trajectory_path);
+    record.accuracy = std::move(*e);
+  }
+  if (scorer_ && scorer_->accumulator().Summary().frames > 0)
+    record.depth = scorer_->accumulator().Summary();
+  if (ceiling_ && options_.mode == "mapping_only_gt_poses")
+    record.sample_ceiling = ceiling_->Summary();
+
+  const double evaluation_s = evaluation_ms_ / 1e3;
+  const double processing_s = std::max(record.wall_s - evaluation_s, 0.0);
+  nlohmann::json& s = record.summary;
+  s["mode"] = options_.mode;
+  s["version"] = options_.version;
+  s["sequence"] = options_.sequence;
+  s["interrupted"] = interrupted;
+  s["data_duration_s"] = record.data_s;
+  s["wall_s"] = record.wall_s;
+  s["evaluation_s"] = evaluation_s;
+  s["real_time_factor"] = processing_s > 0.0 ? record.data_s / processing_s : 0.0;
+  s["events"] = events_;
+  s["poses"] = trajectory_.size();
+  s["status"] = status_counts_;
+  s["lost_reasons"] = lost_reasons_;
+  s["bootstraps"] = bootstraps_;
+  s["reinitialisations"] = reinitialisations_;
+  s["real_time_mode"] = config_.pipeline.real_time;
+  s["mapping_cycles"] = mapping_cycles_;
+  s["mapping_cycles_skipped"] = skipped_cycles_;
+  s["mapping_per_cycle"] = mapping_counts_.PerCycleJson(mapping_cycles_);
+  s["depth_maps"] = confirmed_maps_;
+  s["depth_maps_written"] = depth_writer_.count();
+  s["mean_map_points"] =
+      confirmed_maps_ > 0 ? static_cast<double>(confirmed_points_) / confirmed_maps_ : 0.0;
+  s["map_points_global"] = cloud_.points().size();
+  const auto [rss_mb, peak_mb] = MemoryMb();
+  s["peak_rss_mb"] = peak_mb;
+  s["memory"] = {
+      {"peak_rss_mb", peak_mb}, {"final_rss_mb", rss_mb}, {"rss_mb_over_time", rss_over_time_}};
+  for (const auto& [stage, st] : timings_.Summary()) {
+    s["stages"][stage] = {{"median_ms", st.median_ms},
+                          {"p95_ms", st.p95_ms},
+                          {"calls", st.calls},
+                          {"median_items", st.median_items},
+                          {"total_s", st.total_s}};
+  }
+  if (record.accuracy) s["accuracy"] = TrajectoryEvaluationJson(*record.accuracy);
+  if (record.depth) s["depth"] = DepthJson(*record.depth);
+  if (record.depth && record.sample_ceiling)
+    s["depth"]["sample_ceiling"] = CoverageJson(*record.sample_ceiling);
+  s.update(extra);
+  AAVIO_RETURN_IF_ERROR(io::WriteTextFile((out / "summary.json").string(), s.dump(2) + "\n"));
+  return record;
+}
+
+}  // namespace aavio::recording

@@ -1,0 +1,121 @@
+#pragma once
+/// What a run leaves in its output folder, whichever way it is driven (design.md §4): the CLI's
+/// `aavio run` in each of its modes, and any front end that feeds the odometry live. Fed with the
+/// odometry's ticks (or, when mapping runs on ground-truth poses, with its mapping cycles), it
+/// keeps the trajectory, the per-stage timings and the status counts; writes timings.csv as it
+/// goes, every confirmed local map into the global cloud and five a second into `depth/`; scores
+/// depth against the sequence's ground truth as the maps are made (no file is read back); and at
+/// Finish writes stamped_traj_estimate.txt, map.ply, config.yaml and summary.json.
+
+#include <fstream>
+#include <map>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "aavio/eval/sample_ceiling.hpp"
+#include "aavio/geometry/stereo_rig.hpp"
+#include "aavio/io/depth_folder_writer.hpp"
+#include "aavio/mapping/global_cloud.hpp"
+#include "aavio/pipeline/mapping_front_end.hpp"
+#include "aavio/pipeline/odometry.hpp"
+#include "aavio/pipeline/stage_timings.hpp"
+#include "aavio/recording/depth_images.hpp"
+#include "aavio/recording/depth_scorer.hpp"
+#include "aavio/recording/mapping_counts.hpp"
+#include "aavio/recording/run_evaluation.hpp"
+
+namespace aavio::recording {
+
+struct RunRecorderOptions {
+  std::string out_dir;
+  std::string mode = "full";  ///< summary.json "mode"
+  std::string sequence;       ///< summary.json "sequence": what `aavio eval --run` reopens
+  std::string config_yaml;    ///< the effective configuration, written as config.yaml
+  std::string version;        ///< summary.json "version": the program's, with its git revision
+  TimeNs begin_ns = 0;        ///< the data time the run starts at
+};
+
+/// A finished run's figures (summary.json holds the same).
+struct RunRecord {
+  nlohmann::json summary;
+  double data_s = 0.0, wall_s = 0.0;
+  std::optional<TrajectoryEvaluation> accuracy;
+  std::optional<eval::DepthErrorSummary> depth;
+  std::optional<eval::DepthErrorSummary> sample_ceiling;  ///< runs on ground-truth poses
+};
+
+class RunRecorder {
+ public:
+  /// Creates `options.out_dir`, removing the files an earlier run wrote there.
+  static Expected<std::unique_ptr<RunRecorder>> Open(RunRecorderOptions options,
+                                                     const geometry::StereoRig& rig,
+                                                     const pipeline::OdometryConfig& config);
+
+  /// Scores the run against this ground truth: the trajectory at Finish, and the depth maps as
+  /// they come if it has depth. Call before the first tick.
+  Status SetGroundTruth(const RunGroundTruth& truth, std::vector<geometry::StampedPose> gt_poses);
+
+  /// A packet of events read, and the time reading it took.
+  void AddPacket(std::size_t events, double reading_ms);
+  /// The time of a stage the ticks do not report (e.g. "event_insertion").
+  void AddStage(const std::string& stage, double ms, double items = 0.0) {
+    timings_.Add(stage, ms, items);
+  }
+  /// A tick of pipeline::Odometry (full odometry, or tracking alone).
+  Status AddTick(const pipeline::OdometryTick& tick);
+  /// A tick of pipeline::MappingFrontEnd (mapping on ground-truth poses), and its cycles: every
+  /// confirmed map is scored with its points as they are (the world is the ground truth's), with
+  /// what its edge samples would cover at their true depth beside it.
+  void AddMappingTick(TimeNs t_ns, const events::RepresentationTimings& timings);
+  Status AddMappingCycle(const pipeline::MappingCycle& cycle);
+
+  /// Writes everything. `end_ns`: the data time processed up to; `extra` is merged into
+  /// summary.json.
+  Expected<RunRecord> Finish(bool interrupted, TimeNs end_ns,
+                             const nlohmann::json& extra = nlohmann::json::object());
+
+  const std::vector<geometry::StampedPose>& trajectory() const { return trajectory_; }
+  /// Ticks per tracking status so far ("ok", "lost", "no_map").
+  const std::map<std::string, int>& status_counts() const { return status_counts_; }
+  const std::string& out_dir() const { return options_.out_dir; }
+
+ private:
+  RunRecorder(RunRecorderOptions options, const geometry::StereoRig& rig,
+              const pipeline::OdometryConfig& config, io::DepthFolderWriter depth_writer);
+  void AddRepresentation(TimeNs t_ns, const events::RepresentationTimings& t);
+  void AddCycleReport(const mapping::MappingCycleReport& r);
+  /// A confirmed map: into the cloud, and every depth_every_-th into depth/ (scored there in the
+  /// odometry's modes).
+  Status AddConfirmedMap(const mapping::LocalMap& map, bool score_written);
+
+  RunRecorderOptions options_;
+  pipeline::OdometryConfig config_;
+  mapping::RectifiedStereo stereo_;
+  std::chrono::steady_clock::time_point wall_start_;
+  io::DepthFolderWriter depth_writer_;
+  std::ofstream csv_;
+  int depth_every_;
+  double cloud_depth_m_;
+  mapping::GlobalCloud cloud_;
+  InverseDepthColours colours_;
+  std::optional<RunGroundTruth> truth_;
+  std::vector<geometry::StampedPose> gt_poses_;
+  std::optional<DepthScorer> scorer_;
+  std::optional<eval::SampleCeiling> ceiling_;
+  double evaluation_ms_ = 0.0;  ///< scoring depth: not part of the real-time factor
+
+  std::vector<geometry::StampedPose> trajectory_;
+  pipeline::StageTimings timings_;
+  MappingCounts mapping_counts_;
+  std::map<std::string, int> status_counts_, lost_reasons_;
+  std::int64_t events_ = 0, ticks_ = 0;
+  int bootstraps_ = 0, reinitialisations_ = 0, skipped_cycles_ = 0, mapping_cycles_ = 0;
+  int confirmed_maps_ = 0;
+  std::size_t confirmed_points_ = 0;
+  nlohmann::json rss_over_time_ = nlohmann::json::array();
+};
+
+}  // namespace aavio::recording
