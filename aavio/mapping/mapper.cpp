@@ -108,6 +108,24 @@ void Mapper::Reset() {
   fusion_.Clear();
   initialized_ = false;
   local_map_.reset();
+  history_.clear();
+}
+
+void Mapper::Remember(const PosedObservation& observation) {
+  auto light = std::make_shared<events::Observation>();
+  light->t_ns = observation.obs->t_ns;
+  light->aa_map = observation.obs->aa_map;
+  history_.push_back({std::move(light), observation.T_world_obs});
+  if (static_cast<int>(history_.size()) > kTemporalHistoryLength) history_.erase(history_.begin());
+}
+
+Mapper::Partners Mapper::TemporalPartnersFor(const geometry::RigidTransform& T_world_now) const {
+  const TemporalPartners found =
+      FindTemporalPartners(history_, T_world_now, config_.temporal_stereo);
+  Partners partners;
+  if (found.main) partners.main = *found.main;
+  if (found.check) partners.check = *found.check;
+  return partners;
 }
 
 void Mapper::Publish(const DepthMap& map, bool confirmed) {

@@ -7,6 +7,7 @@
 /// initialise again at the last good pose.
 
 #include <memory>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -93,7 +94,19 @@ class Mapper {
   /// cross-check partner (null: temporal matches are kept unchecked).
   Status Update(const PosedObservation& now, const PosedObservation* partner,
                 MappingCycleReport* report, const PosedObservation* check = nullptr);
+  /// Forgets the map and the remembered observations.
   void Reset();
+
+  /// Keeps a mapping observation's AA map and pose as a later temporal partner (the newest
+  /// kTemporalHistoryLength are kept). Not to be called concurrently with TemporalPartnersFor,
+  /// but it may run while an Update does.
+  void Remember(const PosedObservation& observation);
+  /// The temporal partners (FindTemporalPartners) among the remembered observations, as copies:
+  /// they stay valid while later observations are remembered (e.g. for an Update on a thread).
+  struct Partners {
+    std::optional<PosedObservation> main, check;
+  };
+  Partners TemporalPartnersFor(const geometry::RigidTransform& T_world_now) const;
 
   LocalMapPtr local_map() const { return local_map_; }
 
@@ -106,6 +119,7 @@ class Mapper {
   DepthFusion fusion_;
   bool initialized_ = false;
   LocalMapPtr local_map_;
+  std::vector<PosedObservation> history_;  // AA maps and poses only, oldest first
 };
 
 }  // namespace aavio::mapping

@@ -254,5 +254,45 @@ TEST(Mapper, FindsTheTemporalPartnerAndTheCrossCheckPartner) {
   EXPECT_EQ(FindTemporalPartners(history, now, config).main, nullptr);
 }
 
+// The mapper keeps the temporal history itself: the newest kTemporalHistoryLength observations,
+// only their AA maps, partners handed out as copies, all forgotten on Reset.
+TEST(Mapper, RemembersTheTemporalHistoryAndHandsOutPartnerCopies) {
+  const RectifiedStereo stereo = testing::SmallStereo();
+  const cv::Mat valid(stereo.height, stereo.width, CV_8UC1, cv::Scalar(255));
+  MappingConfig config;
+  config.temporal_stereo.min_translation_m = 0.5;
+  config.temporal_stereo.cross_check_px = 1.0;
+  Mapper mapper(stereo, valid, config);
+  for (int i = 0; i < kTemporalHistoryLength + 5; ++i) {
+    auto obs = std::make_shared<events::Observation>();
+    obs->t_ns = i;
+    obs->aa_map = cv::Mat(4, 4, CV_32FC1, cv::Scalar(i));
+    obs->ts_left = cv::Mat(4, 4, CV_8UC1, cv::Scalar(1));
+    PosedObservation posed{obs, {}};
+    posed.T_world_obs.t = {0.3 * i, 0.0, 0.0};
+    mapper.Remember(posed);
+  }
+  geometry::RigidTransform now;
+  now.t = {0.3 * (kTemporalHistoryLength + 5), 0.0, 0.0};
+  Mapper::Partners partners = mapper.TemporalPartnersFor(now);
+  ASSERT_TRUE(partners.main.has_value());
+  ASSERT_TRUE(partners.check.has_value());
+  const TimeNs newest = kTemporalHistoryLength + 4;
+  EXPECT_EQ(partners.main->obs->t_ns, newest - 1);  // 0.6 m back
+  EXPECT_EQ(partners.check->obs->t_ns, newest - 2);
+  EXPECT_EQ(partners.main->obs->aa_map.at<float>(0, 0), static_cast<float>(newest - 1));
+  EXPECT_TRUE(partners.main->obs->ts_left.empty());  // only the AA map is kept
+  // Far back: only the newest kTemporalHistoryLength are kept, the oldest gone.
+  now.t = {0.0, 0.0, 0.0};
+  config.temporal_stereo.min_translation_m = 0.0;
+  partners = mapper.TemporalPartnersFor(now);
+  ASSERT_TRUE(partners.main.has_value());
+  EXPECT_EQ(partners.main->obs->t_ns, newest);
+  // The copies outlive later observations and a Reset.
+  mapper.Reset();
+  EXPECT_EQ(partners.main->obs->t_ns, newest);
+  EXPECT_FALSE(mapper.TemporalPartnersFor(now).main.has_value());
+}
+
 }  // namespace
 }  // namespace aavio::mapping

@@ -60,22 +60,17 @@ Status MappingFrontEnd::Tick(TimeNs t_ns) {
       const Status init = mapper_.Initialize(now);
       ran = cycle.bootstrap = init.ok();  // too few points: the next cycle tries again
     } else {
-      const mapping::TemporalPartners partners =
-          mapping::FindTemporalPartners(history_, *pose, config_.mapping.temporal_stereo);
-      AAVIO_RETURN_IF_ERROR(mapper_.Update(now, partners.main, &cycle.report, partners.check));
+      const mapping::Mapper::Partners partners = mapper_.TemporalPartnersFor(*pose);
+      AAVIO_RETURN_IF_ERROR(mapper_.Update(now, partners.main ? &*partners.main : nullptr,
+                                           &cycle.report,
+                                           partners.check ? &*partners.check : nullptr));
     }
     if (cycle.bootstrap || cycle.report.published) cycle.map = mapper_.local_map();
     if (ran && on_cycle) on_cycle(cycle);
   }
 
-  // Keep a cycle's AA map and pose for later temporal partners.
-  if (!cycle_tick) return Status::Ok();
-  auto light = std::make_shared<events::Observation>();
-  light->t_ns = obs->t_ns;
-  light->aa_map = obs->aa_map;
-  history_.push_back({std::move(light), *pose});
-  if (static_cast<int>(history_.size()) > mapping::kTemporalHistoryLength)
-    history_.erase(history_.begin());
+  // A cycle's AA map and pose: a later cycle's temporal partner.
+  if (cycle_tick) mapper_.Remember(now);
   return Status::Ok();
 }
 

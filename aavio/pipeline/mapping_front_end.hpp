@@ -53,7 +53,6 @@ class MappingFrontEnd {
   mapping::RectifiedStereo stereo_;
   events::RepresentationBuilder builder_;
   mapping::Mapper mapper_;
-  std::vector<mapping::PosedObservation> history_;  // AA maps and poses only, oldest first
   TimeNs tick_ns_, next_tick_ns_;
   int ticks_per_cycle_;
   std::int64_t ticks_ = 0;

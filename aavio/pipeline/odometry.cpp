@@ -135,11 +135,12 @@ Status Odometry::Tick(TimeNs t_ns) {
   } else if (tracked.status == tracking::TrackingStatus::kOk) {
     lost_ticks_ = 0;
     if (ticks_ % ticks_per_cycle_ == 0) {
-      const mapping::TemporalPartners partners = mapping::FindTemporalPartners(
-          history_, tracked.T_world_cur, config_.mapping.temporal_stereo);
+      const mapping::Mapper::Partners partners = mapper_.TemporalPartnersFor(tracked.T_world_cur);
       const bool on_thread = config_.pipeline.real_time || config_.pipeline.concurrent_mapping;
       if (!on_thread) {
-        AAVIO_RETURN_IF_ERROR(mapper_.Update(now, partners.main, &tick.mapping, partners.check));
+        AAVIO_RETURN_IF_ERROR(mapper_.Update(now, partners.main ? &*partners.main : nullptr,
+                                             &tick.mapping,
+                                             partners.check ? &*partners.check : nullptr));
         tick.mapped = true;
         if (tick.mapping.published) {
           tick.map = mapper_.local_map();
@@ -148,15 +149,12 @@ Status Odometry::Tick(TimeNs t_ns) {
       } else if (pending_cycle_.valid()) {
         tick.mapping_skipped = true;  // the last cycle still runs: this one is dropped
       } else {
-        // The observation and partners by value: history_ may drop them meanwhile.
-        std::optional<mapping::PosedObservation> partner_copy, check_copy;
-        if (partners.main) partner_copy = *partners.main;
-        if (partners.check) check_copy = *partners.check;
         pending_cycle_tick_ = ticks_;
-        pending_cycle_ = std::async(std::launch::async, [this, now, partner_copy, check_copy] {
+        // The partners are copies: the mapper may remember later observations meanwhile.
+        pending_cycle_ = std::async(std::launch::async, [this, now, partners] {
           CycleResult r;
-          r.status = mapper_.Update(now, partner_copy ? &*partner_copy : nullptr, &r.report,
-                                    check_copy ? &*check_copy : nullptr);
+          r.status = mapper_.Update(now, partners.main ? &*partners.main : nullptr, &r.report,
+                                    partners.check ? &*partners.check : nullptr);
           if (r.report.published) r.map = mapper_.local_map();
           return r;
         });
@@ -168,21 +166,14 @@ Status Odometry::Tick(TimeNs t_ns) {
     mapper_.Reset();
     PublishToTracking(nullptr);
     tracker_.Reset(t_ns, tracked.T_world_cur, /*keep_velocity=*/true);
-    history_.clear();
     tick.reinitialised = true;
     lost_ticks_ = 0;
   }
 
-  // Keep this tick's AA map and tracked pose for later temporal partners: partners are earlier
-  // mapping ticks, as in the reference's queue of mapping frames.
-  if (!obs->aa_map.empty() && (tracked.status == tracking::TrackingStatus::kOk || tick.bootstrap)) {
-    auto light = std::make_shared<events::Observation>();
-    light->t_ns = obs->t_ns;
-    light->aa_map = obs->aa_map;
-    history_.push_back({std::move(light), tracked.T_world_cur});
-    if (static_cast<int>(history_.size()) > mapping::kTemporalHistoryLength)
-      history_.erase(history_.begin());
-  }
+  // This tick's AA map and tracked pose: a later cycle's temporal partner (partners are earlier
+  // mapping ticks, as in the reference's queue of mapping frames).
+  if (!obs->aa_map.empty() && (tracked.status == tracking::TrackingStatus::kOk || tick.bootstrap))
+    mapper_.Remember(now);
   if (on_tick) on_tick(tick);
   return Status::Ok();
 }

@@ -45,9 +45,9 @@ struct OdometryTick {
   double tracking_ms = 0.0;  ///< prediction + registration
   double prediction_ms = 0.0;
   events::RepresentationTimings representation;
-  bool mapped = false;       ///< a mapping cycle ran on this tick
-  bool bootstrap = false;    ///< ... and it was an SGM (re-)initialisation that succeeded
-  bool reinitialised = false;  ///< tracking was lost too long: mapping was reset here
+  bool mapped = false;           ///< a mapping cycle ran on this tick
+  bool bootstrap = false;        ///< ... and it was an SGM (re-)initialisation that succeeded
+  bool reinitialised = false;    ///< tracking was lost too long: mapping was reset here
   bool mapping_skipped = false;  ///< real-time mode: a cycle was due but the last still ran
   double mapping_wait_ms = 0.0;  ///< concurrent mapping: waited this long for the last cycle
   mapping::MappingCycleReport mapping;  ///< of the cycle, if one ran (not for bootstraps)
@@ -95,7 +95,6 @@ class Odometry {
   events::RepresentationBuilder builder_;
   tracking::Tracker tracker_;
   mapping::Mapper mapper_;
-  std::vector<mapping::PosedObservation> history_;  // AA maps and tracked poses, oldest first
   std::deque<imu::ImuSample> imu_;
   TimeNs tick_ns_, next_tick_ns_;
   int ticks_per_cycle_;
