@@ -2,8 +2,9 @@
 
 namespace aavio::mapping {
 
-DepthFusion::DepthFusion(const RectifiedStereo& stereo, const MappingConfig& config)
-    : stereo_(stereo), config_(config) {}
+DepthFusion::DepthFusion(const RectifiedStereo& stereo, const FusionConfig& fusion,
+                         const MapCleaning& cleaning)
+    : stereo_(stereo), config_(fusion), cleaning_(cleaning) {}
 
 std::size_t DepthFusion::stored_points() const {
   std::size_t n = 0;
@@ -15,7 +16,7 @@ std::size_t DepthFusion::stored_points() const {
 }
 
 void DepthFusion::Trim(std::deque<DepthBatch>* fifo) const {
-  const FusionConfig& f = config_.fusion;
+  const FusionConfig& f = config_;
   if (f.strategy == FusionStrategy::kConstFrames) {
     while (static_cast<int>(fifo->size()) > f.max_frames)
       fifo->pop_front();
@@ -40,20 +41,20 @@ void DepthFusion::Add(StereoKind kind, DepthBatch batch) {
 bool DepthFusion::full() const {
   // const_frames: max_frames batches; const_points: the point budget is reached. (The reference
   // tests the frame count for both, so with const_points and small batches it never cleans.)
-  if (config_.fusion.strategy == FusionStrategy::kConstFrames)
-    return static_cast<int>(static_.size()) >= config_.fusion.max_frames;
+  if (config_.strategy == FusionStrategy::kConstFrames)
+    return static_cast<int>(static_.size()) >= config_.max_frames;
   std::size_t points = 0;
   for (const DepthBatch& b : static_)
     points += b.points.size();
-  return static_cast<double>(points) >= config_.fusion.max_points;
+  return static_cast<double>(points) >= config_.max_points;
 }
 
 bool DepthFusion::ready_to_publish() const {
-  if (config_.fusion.strategy == FusionStrategy::kConstFrames) return full();
+  if (config_.strategy == FusionStrategy::kConstFrames) return full();
   std::size_t points = 0;
   for (const DepthBatch& b : static_)
     points += b.points.size();
-  return static_cast<double>(points) > 0.5 * config_.fusion.max_points;
+  return static_cast<double>(points) > 0.5 * config_.max_points;
 }
 
 void DepthFusion::Clear() {
@@ -72,15 +73,14 @@ DepthMap DepthFusion::Fuse(const geometry::RigidTransform& T_world_frame, TimeNs
       for (const DepthPoint& p : batch->points) {
         if (!Propagate(p, T_f_o, stereo_, &moved)) continue;
         moved.batch = batch_id;
-        map.Fuse(moved, config_.fusion);
+        map.Fuse(moved, config_);
       }
     }
   };
   auto clean = [&] {
     if (!full()) return;
-    map.Clean(config_.depth_refinement.max_inv_depth_stddev, config_.inv_depth_min,
-              config_.inv_depth_max);
-    if (config_.regularization.enabled) map.Regularize();
+    map.Clean(cleaning_.max_inv_depth_stddev, cleaning_.range.min, cleaning_.range.max);
+    if (cleaning_.regularize) map.Regularize();
   };
   fuse_fifo(static_);
   // Temporal points are fused before cleaning, so they need confirmation like static ones

@@ -17,9 +17,17 @@ struct DepthBatch {
   std::vector<DepthPoint> points;
 };
 
+/// How a full FIFO's fused map is cleaned (algorithm.md §4.9–4.10).
+struct MapCleaning {
+  double max_inv_depth_stddev = 1.0;  ///< depth_refinement's: a fused point's σ_ρ above it goes
+  InvDepthRange range;                ///< points outside it go
+  bool regularize = false;            ///< regularization.enabled
+};
+
 class DepthFusion {
  public:
-  DepthFusion(const RectifiedStereo& stereo, const MappingConfig& config);
+  DepthFusion(const RectifiedStereo& stereo, const FusionConfig& fusion,
+              const MapCleaning& cleaning);
 
   void Add(StereoKind kind, DepthBatch batch);
   /// A new map at T_world_frame with every stored batch propagated and fused into it.
@@ -41,7 +49,8 @@ class DepthFusion {
   void Trim(std::deque<DepthBatch>* fifo) const;
 
   RectifiedStereo stereo_;
-  MappingConfig config_;
+  FusionConfig config_;
+  MapCleaning cleaning_;
   std::deque<DepthBatch> static_, temporal_;  // newest at the back
 };
 

@@ -93,7 +93,9 @@ TEST(DepthFusion, OnlyOtherBatchesConfirm) {
                                         Point(51.0f, 60.0f, 0.1, 0.01)};
   auto cells = [&](bool across, bool confirmed_by_next_batch) {
     config.fusion.confirm_across_batches = across;
-    DepthFusion fusion(stereo, config);
+    DepthFusion fusion(stereo, config.fusion,
+                       {config.depth_refinement.max_inv_depth_stddev, config.inv_depth_range(),
+                        config.regularization.enabled});
     fusion.Add(StereoKind::kStatic, {0, {}, pair});
     const DepthPoint elsewhere = Point(20.0f, 30.0f, 0.1, 0.01);
     fusion.Add(StereoKind::kStatic,
@@ -184,7 +186,9 @@ TEST(DepthFusion, FifoPoliciesAndPropagation) {
   const RectifiedStereo stereo = testing::SmallStereo();
   MappingConfig config;
   config.fusion.max_frames = 3;
-  DepthFusion fusion(stereo, config);
+  DepthFusion fusion(stereo, config.fusion,
+                     {config.depth_refinement.max_inv_depth_stddev, config.inv_depth_range(),
+                      config.regularization.enabled});
   for (int k = 0; k < 5; ++k) {
     // const_frames publishes (algorithm.md §4.11) and cleans once max_frames batches are in.
     EXPECT_EQ(fusion.ready_to_publish(), k >= 3) << k;
@@ -209,7 +213,9 @@ TEST(DepthFusion, FifoPoliciesAndPropagation) {
   }
   config.fusion.strategy = FusionStrategy::kConstPoints;
   config.fusion.max_points = 10;
-  DepthFusion by_points(stereo, config);
+  DepthFusion by_points(stereo, config.fusion,
+                        {config.depth_refinement.max_inv_depth_stddev, config.inv_depth_range(),
+                         config.regularization.enabled});
   for (int k = 0; k < 10; ++k) {
     DepthBatch batch{k, {}, std::vector<DepthPoint>(6, Point(50.0f, 60.0f, 0.1, 0.01))};
     by_points.Add(StereoKind::kStatic, batch);
@@ -224,7 +230,9 @@ TEST(DepthFusion, ConstPointsPublishesFromHalfAndCleansWhenFull) {
   MappingConfig config;
   config.fusion.strategy = FusionStrategy::kConstPoints;
   config.fusion.max_points = 10;
-  DepthFusion by_points(stereo, config);
+  DepthFusion by_points(stereo, config.fusion,
+                        {config.depth_refinement.max_inv_depth_stddev, config.inv_depth_range(),
+                         config.regularization.enabled});
   auto add = [&](int n) {
     by_points.Add(StereoKind::kStatic,
                   {0, {}, std::vector<DepthPoint>(n, Point(50.0f, 60.0f, 0.1, 0.01))});
@@ -259,14 +267,17 @@ TEST(SgmBootstrap, DepthOfAShiftedTextureAndTooFewPoints) {
   MappingConfig config;
   config.bootstrap.min_points = 100;
   const Expected<std::vector<DepthPoint>> sgm =
-      BootstrapWithSgm(left8, right8, points, stereo, config);
+      BootstrapWithSgm(left8, right8, points, stereo, config.bootstrap,
+                       config.depth_refinement.student_t_nu, config.inv_depth_range());
   ASSERT_TRUE(sgm.ok()) << sgm.status().message();
   int right = 0;
   for (const DepthPoint& p : *sgm)
     right += std::abs(stereo.Disparity(p.rho) - 16.0) < 0.5;
   EXPECT_GT(right, static_cast<int>(sgm->size()) * 9 / 10);
   config.bootstrap.min_points = 100000;
-  const auto refused = BootstrapWithSgm(left8, right8, points, stereo, config);
+  const auto refused =
+      BootstrapWithSgm(left8, right8, points, stereo, config.bootstrap,
+                       config.depth_refinement.student_t_nu, config.inv_depth_range());
   EXPECT_NE(refused.status().message().find("fewer than mapping.bootstrap.min_points"),
             std::string::npos);
 }

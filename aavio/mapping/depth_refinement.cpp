@@ -152,8 +152,8 @@ double JacobianNorm2(const Residual& f, double rho, double h, const Evaluation& 
 }
 
 bool RefineOne(const RefinementInput& in, const Match& m, const RectifiedStereo& stereo,
-               const MappingConfig& config, DepthPoint* out) {
-  const DepthRefinementConfig& c = config.depth_refinement;
+               const DepthRefinementConfig& c, const TemporalStereoConfig& t, InvDepthRange range,
+               DepthPoint* out) {
   const Residual f(in, m, stereo, kPatchWidth, kPatchHeight);
   if (!f.ok()) return false;
   const double nu = c.student_t_nu, s2_t = c.student_t_scale * c.student_t_scale;
@@ -207,7 +207,6 @@ bool RefineOne(const RefinementInput& in, const Match& m, const RectifiedStereo&
   const double variance = sigma_t2 / jtj;
   // Culling (algorithm.md §4.7); temporal residuals are on the AA maps, which may have their own
   // thresholds.
-  const TemporalStereoConfig& t = config.temporal_stereo;
   const bool temporal = m.kind == StereoKind::kTemporal;
   const double max_stddev =
       temporal && t.max_inv_depth_stddev > 0.0 ? t.max_inv_depth_stddev : c.max_inv_depth_stddev;
@@ -218,7 +217,7 @@ bool RefineOne(const RefinementInput& in, const Match& m, const RectifiedStereo&
   if (sigma > max_stddev) return false;
   if (c.max_relative_stddev > 0.0 && sigma > c.max_relative_stddev * rho) return false;
   if (e_ptr->cost > residual * residual * area) return false;
-  if (rho < config.inv_depth_min || rho > config.inv_depth_max) return false;
+  if (!range.Contains(rho)) return false;
   out->u = m.u;
   out->v = m.v;
   out->rho = rho;
@@ -234,14 +233,16 @@ bool RefineOne(const RefinementInput& in, const Match& m, const RectifiedStereo&
 }  // namespace
 
 std::vector<DepthPoint> RefineDepths(const RefinementInput& input, std::span<const Match> matches,
-                                     const RectifiedStereo& stereo, const MappingConfig& config) {
+                                     const RectifiedStereo& stereo,
+                                     const DepthRefinementConfig& refinement,
+                                     const TemporalStereoConfig& temporal, InvDepthRange range) {
   std::vector<DepthPoint> results(matches.size());
   std::vector<char> ok(matches.size(), 0);
   tbb::parallel_for(std::size_t{0}, matches.size(), [&](std::size_t i) {
     const Match& m = matches[i];
     if (m.kind == StereoKind::kTemporal && (input.aa_now == nullptr || input.aa_past == nullptr))
       return;
-    ok[i] = RefineOne(input, m, stereo, config, &results[i]) ? 1 : 0;
+    ok[i] = RefineOne(input, m, stereo, refinement, temporal, range, &results[i]) ? 1 : 0;
   });
   std::vector<DepthPoint> points;
   for (std::size_t i = 0; i < matches.size(); ++i) {

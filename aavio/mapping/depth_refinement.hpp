@@ -24,8 +24,12 @@ struct RefinementInput {
   geometry::RigidTransform T_past_now;
 };
 
+/// Culling by `refinement`'s thresholds (temporal estimates by `temporal`'s where it sets them)
+/// and by the inverse-depth `range`.
 std::vector<DepthPoint> RefineDepths(const RefinementInput& input, std::span<const Match> matches,
-                                     const RectifiedStereo& stereo, const MappingConfig& config);
+                                     const RectifiedStereo& stereo,
+                                     const DepthRefinementConfig& refinement,
+                                     const TemporalStereoConfig& temporal, InvDepthRange range);
 
 /// The robust scale of residuals by the Student-t IRLS loop (start s², iterate until the change
 /// is below 5 %), and the weights w_k = (ν + 1)/(ν + r_k²/s²).

@@ -10,7 +10,9 @@ namespace {
 double Bilinear(const cv::Mat& image, double x, double y) {
   const int x0 = static_cast<int>(std::floor(x)), y0 = static_cast<int>(std::floor(y));
   const double ax = x - x0, ay = y - y0;
-  const auto at = [&](int yy, int xx) { return static_cast<double>(image.at<std::uint8_t>(yy, xx)); };
+  const auto at = [&](int yy, int xx) {
+    return static_cast<double>(image.at<std::uint8_t>(yy, xx));
+  };
   return (1 - ay) * ((1 - ax) * at(y0, x0) + ax * at(y0, x0 + 1)) +
          ay * ((1 - ax) * at(y0 + 1, x0) + ax * at(y0 + 1, x0 + 1));
 }
@@ -33,7 +35,8 @@ void SnapToNewestEdge(const cv::Mat& negative_ts, const cv::Mat& grad_u, const c
     const double du = gu / norm, dv = gv / norm;
     for (int k = -n; k <= n; ++k) {
       const double x = u + k * kStep * du, y = v + k * kStep * dv;
-      const bool inside = x >= 0.0 && y >= 0.0 && x < negative_ts.cols - 1.0 && y < negative_ts.rows - 1.0;
+      const bool inside =
+          x >= 0.0 && y >= 0.0 && x < negative_ts.cols - 1.0 && y < negative_ts.rows - 1.0;
       profile[static_cast<std::size_t>(k + n)] = inside ? Bilinear(negative_ts, x, y) : 256.0;
     }
     const auto lowest = std::min_element(profile.begin(), profile.end());

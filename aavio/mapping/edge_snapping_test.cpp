@@ -16,7 +16,8 @@ cv::Mat MovingEdge(double edge_x) {
   for (int y = 0; y < ts.rows; ++y) {
     for (int x = 0; x < ts.cols; ++x) {
       const double d = x - edge_x;
-      const double value = d >= 0 ? std::min(255.0, 20.0 + 120.0 * d) : std::min(255.0, 20.0 - 30.0 * d);
+      const double value =
+          d >= 0 ? std::min(255.0, 20.0 + 120.0 * d) : std::min(255.0, 20.0 - 30.0 * d);
       ts.at<std::uint8_t>(y, x) = static_cast<std::uint8_t>(std::lround(value));
     }
   }

@@ -102,7 +102,12 @@ TemporalPartners FindTemporalPartners(std::span<const PosedObservation> history,
 
 Mapper::Mapper(const RectifiedStereo& stereo, const cv::Mat& valid_mask,
                const MappingConfig& config)
-    : stereo_(stereo), valid_mask_(valid_mask), config_(config), fusion_(stereo, config) {}
+    : stereo_(stereo),
+      valid_mask_(valid_mask),
+      config_(config),
+      fusion_(stereo, config.fusion,
+              {config.depth_refinement.max_inv_depth_stddev, config.inv_depth_range(),
+               config.regularization.enabled}) {}
 
 void Mapper::Reset() {
   fusion_.Clear();
@@ -151,8 +156,11 @@ Status Mapper::Initialize(const PosedObservation& now) {
     const bool smooth = config_.static_stereo.smooth_time_surface;
     const cv::Mat left = ToFloat(obs.ts_left, smooth), right = ToFloat(obs.ts_right, smooth);
     const std::vector<Match> matches =
-        MatchStatic({left, right, valid_mask_}, positions, stereo_, config_);
-    points = RefineDepths({left, right, nullptr, nullptr, {}}, matches, stereo_, config_);
+        MatchStatic({left, right, valid_mask_}, positions, stereo_, config_.static_stereo,
+                    config_.inv_depth_range());
+    points =
+        RefineDepths({left, right, nullptr, nullptr, {}}, matches, stereo_,
+                     config_.depth_refinement, config_.temporal_stereo, config_.inv_depth_range());
     if (static_cast<int>(points.size()) < config_.bootstrap.min_points) {
       return FailedPrecondition(
           StrFormat("block-matching bootstrap found %zu points at the %zu edge samples, fewer "
@@ -166,7 +174,8 @@ Status Mapper::Initialize(const PosedObservation& now) {
     for (const events::EdgeSample& s : obs.samples)
       positions.emplace_back(s.u, s.v);
     Expected<std::vector<DepthPoint>> sgm =
-        BootstrapWithSgm(obs.ts_left, obs.ts_right, positions, stereo_, config_);
+        BootstrapWithSgm(obs.ts_left, obs.ts_right, positions, stereo_, config_.bootstrap,
+                         config_.depth_refinement.student_t_nu, config_.inv_depth_range());
     if (!sgm) return sgm.status();
     points = std::move(*sgm);
   }
@@ -229,8 +238,8 @@ Status Mapper::Update(const PosedObservation& now, const PosedObservation* partn
   auto t = Clock::now();
   const bool smooth = config_.static_stereo.smooth_time_surface;
   const cv::Mat left = ToFloat(obs.ts_left, smooth), right = ToFloat(obs.ts_right, smooth);
-  std::vector<Match> matches =
-      MatchStatic({left, right, valid_mask_}, static_group, stereo_, config_);
+  std::vector<Match> matches = MatchStatic({left, right, valid_mask_}, static_group, stereo_,
+                                           config_.static_stereo, config_.inv_depth_range());
   // Remember which static matches sit on near-horizontal edges (for the evaluation split).
   {
     std::size_t k = 0;
@@ -261,8 +270,9 @@ Status Mapper::Update(const PosedObservation& now, const PosedObservation* partn
       input.aa_check = &aa_check;
       input.T_check_now = &T_check_now;
     }
-    const std::vector<Match> temporal_matches =
-        MatchTemporal(input, temporal_group, stereo_, config_, &report->temporal);
+    const std::vector<Match> temporal_matches = MatchTemporal(
+        input, temporal_group, stereo_, config_.temporal_stereo,
+        config_.static_stereo.zncc_threshold, config_.inv_depth_range(), &report->temporal);
     report->temporal_matches = static_cast<int>(temporal_matches.size());
     matches.insert(matches.end(), temporal_matches.begin(), temporal_matches.end());
   }
@@ -272,7 +282,9 @@ Status Mapper::Update(const PosedObservation& now, const PosedObservation* partn
   t = Clock::now();
   const RefinementInput refine{left, right, aa_now.empty() ? nullptr : &aa_now,
                                aa_past.empty() ? nullptr : &aa_past, T_past_now};
-  std::vector<DepthPoint> refined = RefineDepths(refine, matches, stereo_, config_);
+  std::vector<DepthPoint> refined =
+      RefineDepths(refine, matches, stereo_, config_.depth_refinement, config_.temporal_stereo,
+                   config_.inv_depth_range());
   MoveOntoNewestEdge(temporal_group, temporal_snapped, &refined);
   report->refinement_ms = MsSince(t);
 

@@ -9,6 +9,12 @@
 
 namespace aavio::mapping {
 
+/// The inverse depths mapping keeps, [min, max] in 1/m (MappingConfig's inv_depth_min/max).
+struct InvDepthRange {
+  double min = 0.0, max = 0.0;
+  bool Contains(double rho) const { return rho >= min && rho <= max; }
+};
+
 /// Left/right block matching along rectified rows (algorithm.md §4.3), over the disparities
 /// the depth range [1/inv_depth_max, 1/inv_depth_min] allows.
 struct StaticStereoConfig {
@@ -205,6 +211,8 @@ struct MappingConfig {
   FusionConfig fusion;
   RegularizationConfig regularization;
   BootstrapConfig bootstrap;
+
+  InvDepthRange inv_depth_range() const { return {inv_depth_min, inv_depth_max}; }
 
   template <typename V>
   void VisitFields(V&& v) {

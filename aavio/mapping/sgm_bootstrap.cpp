@@ -12,9 +12,9 @@ namespace aavio::mapping {
 Expected<std::vector<DepthPoint>> BootstrapWithSgm(const cv::Mat& ts_left, const cv::Mat& ts_right,
                                                    std::span<const Eigen::Vector2f> points,
                                                    const RectifiedStereo& stereo,
-                                                   const MappingConfig& config) {
-  const BootstrapConfig& b = config.bootstrap;
-  const DisparityRange range = StaticDisparityRange(stereo, config);
+                                                   const BootstrapConfig& b, double student_t_nu,
+                                                   InvDepthRange rho_range) {
+  const DisparityRange range = StaticDisparityRange(stereo, rho_range);
   // OpenCV wants a positive multiple of 16 disparities, starting at 0.
   const int disparities = std::max(16, (range.max + 15) / 16 * 16);
   constexpr int kBlock = 11, kUniquenessRatio = 11;
@@ -26,7 +26,7 @@ Expected<std::vector<DepthPoint>> BootstrapWithSgm(const cv::Mat& ts_left, const
   cv::Mat disparity;  // CV_16S, disparity × 16
   sgm->compute(ts_left, ts_right, disparity);
   const double sigma2 = kSgmInvDepthStddev * kSgmInvDepthStddev;
-  const double nu = config.depth_refinement.student_t_nu;
+  const double nu = student_t_nu;
   std::vector<DepthPoint> out;
   std::vector<char> taken(static_cast<std::size_t>(stereo.width) * stereo.height, 0);
   for (const Eigen::Vector2f& x : points) {
@@ -38,7 +38,7 @@ Expected<std::vector<DepthPoint>> BootstrapWithSgm(const cv::Mat& ts_left, const
     const short d16 = disparity.at<short>(v, u);
     if (d16 <= 0) continue;  // invalid (negative) or infinitely far
     const double rho = stereo.InvDepthOfDisparity(d16 / 16.0);
-    if (rho < config.inv_depth_min || rho > config.inv_depth_max) continue;
+    if (!rho_range.Contains(rho)) continue;
     DepthPoint p;
     p.u = static_cast<float>(u);
     p.v = static_cast<float>(v);

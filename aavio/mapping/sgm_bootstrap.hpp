@@ -21,6 +21,7 @@ inline constexpr double kSgmInvDepthStddev = 0.001;
 Expected<std::vector<DepthPoint>> BootstrapWithSgm(const cv::Mat& ts_left, const cv::Mat& ts_right,
                                                    std::span<const Eigen::Vector2f> points,
                                                    const RectifiedStereo& stereo,
-                                                   const MappingConfig& config);
+                                                   const BootstrapConfig& config,
+                                                   double student_t_nu, InvDepthRange range);
 
 }  // namespace aavio::mapping

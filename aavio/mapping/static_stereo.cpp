@@ -9,10 +9,10 @@
 
 namespace aavio::mapping {
 
-DisparityRange StaticDisparityRange(const RectifiedStereo& stereo, const MappingConfig& config) {
+DisparityRange StaticDisparityRange(const RectifiedStereo& stereo, InvDepthRange range) {
   DisparityRange r;
-  r.min = std::max(0, static_cast<int>(std::floor(stereo.Disparity(config.inv_depth_min))));
-  r.max = static_cast<int>(std::ceil(stereo.Disparity(config.inv_depth_max)));
+  r.min = std::max(0, static_cast<int>(std::floor(stereo.Disparity(range.min))));
+  r.max = static_cast<int>(std::ceil(stereo.Disparity(range.max)));
   return r;
 }
 
@@ -55,8 +55,8 @@ bool LeftRightConsistent(const StaticStereoInput& in, int u, int v, int d,
 }
 
 bool MatchOne(const StaticStereoInput& in, const Eigen::Vector2f& x, const RectifiedStereo& stereo,
-              const MappingConfig& config, const DisparityRange& range, Match* out) {
-  const StaticStereoConfig& c = config.static_stereo;
+              const StaticStereoConfig& c, InvDepthRange rho_range, const DisparityRange& range,
+              Match* out) {
   const int hw = kPatchWidth / 2, hh = kPatchHeight / 2;
   const int u = static_cast<int>(std::lround(x.x())), v = static_cast<int>(std::lround(x.y()));
   const int w = in.left.cols, h = in.left.rows;
@@ -97,7 +97,7 @@ bool MatchOne(const StaticStereoInput& in, const Eigen::Vector2f& x, const Recti
     return false;
   }
   const double rho = stereo.InvDepthOfDisparity(best_d);
-  if (!(rho > 0.0) || rho < config.inv_depth_min || rho > config.inv_depth_max) return false;
+  if (!(rho > 0.0) || !rho_range.Contains(rho)) return false;
   *out = {x.x(), x.y(), rho, best, StereoKind::kStatic, false};
   return true;
 }
@@ -106,12 +106,13 @@ bool MatchOne(const StaticStereoInput& in, const Eigen::Vector2f& x, const Recti
 
 std::vector<Match> MatchStatic(const StaticStereoInput& input,
                                std::span<const Eigen::Vector2f> points,
-                               const RectifiedStereo& stereo, const MappingConfig& config) {
-  const DisparityRange range = StaticDisparityRange(stereo, config);
+                               const RectifiedStereo& stereo, const StaticStereoConfig& config,
+                               InvDepthRange rho_range) {
+  const DisparityRange range = StaticDisparityRange(stereo, rho_range);
   std::vector<Match> results(points.size());
   std::vector<char> ok(points.size(), 0);
   tbb::parallel_for(std::size_t{0}, points.size(), [&](std::size_t i) {
-    ok[i] = MatchOne(input, points[i], stereo, config, range, &results[i]) ? 1 : 0;
+    ok[i] = MatchOne(input, points[i], stereo, config, rho_range, range, &results[i]) ? 1 : 0;
   });
   std::vector<Match> matches;
   for (std::size_t i = 0; i < points.size(); ++i) {

@@ -22,7 +22,7 @@ struct DisparityRange {
   int min = 0, max = 0;
 };
 /// d_min = max(⌊d(ρ_min)⌋, 0), d_max = ⌈d(ρ_max)⌉: the disparities of the depth range.
-DisparityRange StaticDisparityRange(const RectifiedStereo& stereo, const MappingConfig& config);
+DisparityRange StaticDisparityRange(const RectifiedStereo& stereo, InvDepthRange range);
 
 struct StaticStereoInput {
   const cv::Mat& left;        ///< CV_32FC1 left TS (smoothed if configured)
@@ -30,9 +30,11 @@ struct StaticStereoInput {
   const cv::Mat& valid_mask;  ///< CV_8UC1 rectified left valid mask
 };
 
-/// One match per point that passes (order kept); `points` are rectified left positions.
+/// One match per point that passes (order kept); `points` are rectified left positions; matches
+/// outside `range` are dropped.
 std::vector<Match> MatchStatic(const StaticStereoInput& input,
                                std::span<const Eigen::Vector2f> points,
-                               const RectifiedStereo& stereo, const MappingConfig& config);
+                               const RectifiedStereo& stereo, const StaticStereoConfig& config,
+                               InvDepthRange range);
 
 }  // namespace aavio::mapping

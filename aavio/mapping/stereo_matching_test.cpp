@@ -57,7 +57,8 @@ TEST(StaticStereo, FindsTheShiftOfATexture) {
   for (int v = 20; v < 100; v += 9)
     for (int u = 40; u < 140; u += 11)
       points.emplace_back(u, v);
-  const std::vector<Match> matches = MatchStatic({left, right, valid}, points, stereo, config);
+  const std::vector<Match> matches = MatchStatic({left, right, valid}, points, stereo,
+                                                 config.static_stereo, config.inv_depth_range());
   EXPECT_GT(matches.size(), points.size() * 9 / 10);
   for (const Match& m : matches) {
     EXPECT_NEAR(stereo.Disparity(m.rho), 12.0, 1e-9);
@@ -65,7 +66,9 @@ TEST(StaticStereo, FindsTheShiftOfATexture) {
   }
   // A flat right image matches nothing.
   const cv::Mat flat(120, 160, CV_32FC1, cv::Scalar(50));
-  EXPECT_TRUE(MatchStatic({left, flat, valid}, points, stereo, config).empty());
+  EXPECT_TRUE(MatchStatic({left, flat, valid}, points, stereo, config.static_stereo,
+                          config.inv_depth_range())
+                  .empty());
 }
 
 // The left-right check keeps consistent matches and drops a match whose right patch finds a
@@ -88,12 +91,14 @@ TEST(StaticStereo, LeftRightCheckDropsInconsistentMatches) {
   std::vector<Eigen::Vector2f> points = {{static_cast<float>(u), static_cast<float>(v)}};
   for (int vv = 20; vv < 100; vv += 9)  // and consistent points elsewhere
     points.emplace_back(40.0f, static_cast<float>(vv));
-  const std::vector<Match> without = MatchStatic({left, right, valid}, points, stereo, config);
+  const std::vector<Match> without = MatchStatic({left, right, valid}, points, stereo,
+                                                 config.static_stereo, config.inv_depth_range());
   ASSERT_FALSE(without.empty());
   EXPECT_EQ(without.front().u, static_cast<float>(u));
   EXPECT_NEAR(stereo.Disparity(without.front().rho), 30.0, 1e-9);  // fooled by the copy
   config.static_stereo.left_right_tolerance_px = 1;
-  const std::vector<Match> with = MatchStatic({left, right, valid}, points, stereo, config);
+  const std::vector<Match> with = MatchStatic({left, right, valid}, points, stereo,
+                                              config.static_stereo, config.inv_depth_range());
   EXPECT_EQ(with.size(), without.size() - 1);
   for (const Match& m : with) {
     EXPECT_NE(m.u, static_cast<float>(u));
@@ -104,13 +109,13 @@ TEST(StaticStereo, LeftRightCheckDropsInconsistentMatches) {
 TEST(StaticStereo, DisparityRangeFollowsTheDepthRange) {
   const RectifiedStereo stereo = testing::SmallStereo();
   MappingConfig config = Config();
-  const DisparityRange r = StaticDisparityRange(stereo, config);
+  const DisparityRange r = StaticDisparityRange(stereo, config.inv_depth_range());
   EXPECT_EQ(r.min, 0);
   EXPECT_EQ(r.max, 81);                 // ⌈321.6 · 0.25⌉
   config.inv_depth_max = 40.0 / 321.6;  // nearest depth 8 m
-  EXPECT_EQ(StaticDisparityRange(stereo, config).max, 40);
+  EXPECT_EQ(StaticDisparityRange(stereo, config.inv_depth_range()).max, 40);
   config.inv_depth_min = 5.5 / 321.6;  // farthest 58 m
-  EXPECT_EQ(StaticDisparityRange(stereo, config).min, 5);
+  EXPECT_EQ(StaticDisparityRange(stereo, config.inv_depth_range()).min, 5);
 }
 
 TEST(TemporalStereo, TriangulatesAKnownPoint) {
@@ -147,7 +152,8 @@ struct StripedPlane {
         points.emplace_back(u, v);
   }
   std::vector<Match> Matches(const MappingConfig& config) const {
-    return MatchTemporal({aa_now, aa_past, T_past_now}, points, stereo, config);
+    return MatchTemporal({aa_now, aa_past, T_past_now}, points, stereo, config.temporal_stereo,
+                         config.static_stereo.zncc_threshold, config.inv_depth_range());
   }
 };
 
@@ -178,7 +184,8 @@ TEST(TemporalStereo, CrossCheckKeepsOnlyDepthsASecondViewConfirms) {
     TemporalStereoInput input{scene.aa_now, scene.aa_past, scene.T_past_now};
     input.aa_check = &aa_check;
     input.T_check_now = &T_check_now;
-    return MatchTemporal(input, scene.points, scene.stereo, config);
+    return MatchTemporal(input, scene.points, scene.stereo, config.temporal_stereo,
+                         config.static_stereo.zncc_threshold, config.inv_depth_range());
   };
   const std::vector<Match> consistent = checked(10.0);
   EXPECT_GE(consistent.size(), unchecked * 9 / 10);
@@ -194,7 +201,8 @@ TEST(TemporalStereo, StatsCountWhereEachCandidateIsLost) {
   auto stats_of = [&](const TemporalStereoInput& input) {
     TemporalMatchStats stats;
     const std::vector<Match> matches =
-        MatchTemporal(input, scene.points, scene.stereo, config, &stats);
+        MatchTemporal(input, scene.points, scene.stereo, config.temporal_stereo,
+                      config.static_stereo.zncc_threshold, config.inv_depth_range(), &stats);
     EXPECT_EQ(stats.matched, static_cast<int>(matches.size()));
     EXPECT_EQ(stats.matched + stats.no_segment + stats.no_match + stats.ill_conditioned +
                   stats.check_rejected + stats.out_of_range,
@@ -250,7 +258,8 @@ TEST(TemporalStereo, CrossCheckAtTwiceTheBaselineConfirmsAPeriodicMismatch) {
     for (int u = 40; u < 120; u += 20)
       on_stripes.emplace_back(u, v);
   const std::vector<Match> unchecked = MatchTemporal(
-      {scene.aa_now, scene.aa_past, scene.T_past_now}, on_stripes, scene.stereo, config);
+      {scene.aa_now, scene.aa_past, scene.T_past_now}, on_stripes, scene.stereo,
+      config.temporal_stereo, config.static_stereo.zncc_threshold, config.inv_depth_range());
   ASSERT_EQ(unchecked.size(), on_stripes.size());
   const double alias_m = scene.stereo.f * 0.3 / (scene.shift + 13.0);
   for (const Match& m : unchecked)
@@ -264,7 +273,8 @@ TEST(TemporalStereo, CrossCheckAtTwiceTheBaselineConfirmsAPeriodicMismatch) {
     TemporalStereoInput input{scene.aa_now, scene.aa_past, scene.T_past_now};
     input.aa_check = &aa_check;
     input.T_check_now = &T_check_now;
-    return MatchTemporal(input, on_stripes, scene.stereo, config);
+    return MatchTemporal(input, on_stripes, scene.stereo, config.temporal_stereo,
+                         config.static_stereo.zncc_threshold, config.inv_depth_range());
   };
   const std::vector<Match> twice = checked(0.6);
   EXPECT_EQ(twice.size(), unchecked.size());
@@ -285,7 +295,8 @@ TEST(DepthRefinement, RecoversSubPixelDisparityAndItsUncertainty) {
       matches.push_back({static_cast<float>(u), static_cast<float>(v),
                          stereo.InvDepthOfDisparity(20.0), 0.01, StereoKind::kStatic, false});
   const std::vector<DepthPoint> refined =
-      RefineDepths({left, right, nullptr, nullptr, {}}, matches, stereo, config);
+      RefineDepths({left, right, nullptr, nullptr, {}}, matches, stereo, config.depth_refinement,
+                   config.temporal_stereo, config.inv_depth_range());
   ASSERT_GT(refined.size(), matches.size() * 9 / 10);
   for (const DepthPoint& p : refined) {
     EXPECT_NEAR(stereo.Disparity(p.rho), d, 0.03);  // bilinear interpolation bias only
@@ -304,7 +315,8 @@ TEST(DepthRefinement, TemporalEstimatesAreCulledByTheirOwnThresholds) {
   const cv::Mat none(120, 160, CV_32FC1, cv::Scalar(0.0f));
   auto refined = [&](const MappingConfig& config) {
     return RefineDepths({none, none, &scene.aa_now, &scene.aa_past, scene.T_past_now}, matches,
-                        scene.stereo, config)
+                        scene.stereo, config.depth_refinement, config.temporal_stereo,
+                        config.inv_depth_range())
         .size();
   };
   const std::size_t all = refined(Config());

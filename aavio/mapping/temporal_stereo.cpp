@@ -15,10 +15,8 @@
 
 namespace aavio::mapping {
 
-void TemporalInvDepthRange(const MappingConfig& config, double* rho_lo, double* rho_hi) {
-  const TemporalStereoConfig& t = config.temporal_stereo;
-  *rho_lo = std::max(config.inv_depth_min, 1.0 / t.max_depth_m);
-  *rho_hi = std::min(config.inv_depth_max, 1.0 / t.min_depth_m);
+InvDepthRange TemporalInvDepthRange(const TemporalStereoConfig& t, InvDepthRange range) {
+  return {std::max(range.min, 1.0 / t.max_depth_m), std::min(range.max, 1.0 / t.min_depth_m)};
 }
 
 double TriangulateDepth(const RectifiedStereo& stereo, const Eigen::Vector2d& x_now,
@@ -54,6 +52,14 @@ struct SegmentMatch {
 };
 
 // What became of a candidate; the order is TemporalMatchStats' (MatchTemporal counts by it).
+// What one search needs: the section, the cost threshold, the configured range of inverse depth
+// and the part of it the depth gate leaves to search.
+struct Search {
+  const TemporalStereoConfig& config;
+  double max_cost;
+  InvDepthRange range, search;
+};
+
 enum class Outcome : std::uint8_t {
   kMatched,
   kNoSegment,
@@ -65,9 +71,9 @@ enum class Outcome : std::uint8_t {
 
 Outcome SearchSegment(const NormalizedPatch& patch, const cv::Mat& aa_past,
                       const geometry::RigidTransform& T_past_now, const Eigen::Vector2f& x,
-                      const RectifiedStereo& stereo, const MappingConfig& config, double rho_lo,
-                      double rho_hi, SegmentMatch* out) {
-  const TemporalStereoConfig& t = config.temporal_stereo;
+                      const RectifiedStereo& stereo, const Search& search, SegmentMatch* out) {
+  const TemporalStereoConfig& t = search.config;
+  const double rho_lo = search.search.min, rho_hi = search.search.max;
   constexpr int hr = kTemporalPatchRows / 2, hc = kTemporalPatchCols / 2;
   const int w = aa_past.cols, h = aa_past.rows;
   const int stride = static_cast<int>(aa_past.step1());
@@ -104,7 +110,7 @@ Outcome SearchSegment(const NormalizedPatch& patch, const cv::Mat& aa_past,
   if (best_k < 0) return Outcome::kNoSegment;  // the segment lies outside the image
   const double best = costs[static_cast<std::size_t>(best_k)];
   // [ICRA code]: a wide patch on AA maps is accepted below 3θ.
-  if (best >= 3.0 * config.static_stereo.zncc_threshold) return Outcome::kNoMatch;
+  if (best >= search.max_cost) return Outcome::kNoMatch;
   // Sub-sample position along the segment: the vertex of the parabola through the best cost and
   // its neighbours.
   double k_star = best_k;
@@ -132,9 +138,8 @@ Outcome SearchSegment(const NormalizedPatch& patch, const cv::Mat& aa_past,
 }
 
 Outcome MatchOne(const TemporalStereoInput& in, const Eigen::Vector2f& x,
-                 const RectifiedStereo& stereo, const MappingConfig& config, double rho_lo,
-                 double rho_hi, Match* out) {
-  const TemporalStereoConfig& t = config.temporal_stereo;
+                 const RectifiedStereo& stereo, const Search& s, Match* out) {
+  const TemporalStereoConfig& t = s.config;
   constexpr int hr = kTemporalPatchRows / 2, hc = kTemporalPatchCols / 2;
   const int w = in.aa_now.cols, h = in.aa_now.rows;
   const int u = static_cast<int>(std::lround(x.x())), v = static_cast<int>(std::lround(x.y()));
@@ -154,12 +159,11 @@ Outcome MatchOne(const TemporalStereoInput& in, const Eigen::Vector2f& x,
     return Outcome::kNoSegment;
 
   SegmentMatch m;
-  const Outcome found =
-      SearchSegment(patch, in.aa_past, in.T_past_now, x, stereo, config, rho_lo, rho_hi, &m);
+  const Outcome found = SearchSegment(patch, in.aa_past, in.T_past_now, x, stereo, s, &m);
   if (found != Outcome::kMatched) return found;
   // Conditioning: one pixel of matching error may not move the depth by more than
   // max_relative_depth_error (parallax too small for this depth otherwise).
-  const double max_error = config.temporal_stereo.max_relative_depth_error;
+  const double max_error = t.max_relative_depth_error;
   if (max_error > 0.0 && !(m.dz_per_px / m.z <= max_error)) return Outcome::kIllConditioned;
   double rho = 1.0 / m.z;
   if (in.aa_check != nullptr) {
@@ -167,8 +171,8 @@ Outcome MatchOne(const TemporalStereoInput& in, const Eigen::Vector2f& x,
     // depth within cross_check_px pixels of matching error (summed over both searches); then
     // the two are averaged in inverse depth, weighted by their per-pixel precision.
     SegmentMatch c;
-    if (SearchSegment(patch, *in.aa_check, *in.T_check_now, x, stereo, config, rho_lo, rho_hi,
-                      &c) != Outcome::kMatched) {
+    if (SearchSegment(patch, *in.aa_check, *in.T_check_now, x, stereo, s, &c) !=
+        Outcome::kMatched) {
       return Outcome::kCheckRejected;
     }
     const double d_rho_m = m.dz_per_px / (m.z * m.z), d_rho_c = c.dz_per_px / (c.z * c.z);
@@ -181,7 +185,7 @@ Outcome MatchOne(const TemporalStereoInput& in, const Eigen::Vector2f& x,
     const double w_m = 1.0 / (d_rho_m * d_rho_m), w_c = 1.0 / (d_rho_c * d_rho_c);
     rho = (w_m * rho + w_c * rho_c) / (w_m + w_c);
   }
-  if (rho < config.inv_depth_min || rho > config.inv_depth_max) return Outcome::kOutOfRange;
+  if (!s.range.Contains(rho)) return Outcome::kOutOfRange;
   *out = {x.x(), x.y(), rho, m.cost, StereoKind::kTemporal, true};
   return Outcome::kMatched;
 }
@@ -190,16 +194,17 @@ Outcome MatchOne(const TemporalStereoInput& in, const Eigen::Vector2f& x,
 
 std::vector<Match> MatchTemporal(const TemporalStereoInput& input,
                                  std::span<const Eigen::Vector2f> points,
-                                 const RectifiedStereo& stereo, const MappingConfig& config,
+                                 const RectifiedStereo& stereo, const TemporalStereoConfig& config,
+                                 double zncc_threshold, InvDepthRange range,
                                  TemporalMatchStats* stats) {
-  double rho_lo, rho_hi;
-  TemporalInvDepthRange(config, &rho_lo, &rho_hi);
+  // [ICRA code]: a wide patch on AA maps is accepted below 3θ.
+  const Search search{config, 3.0 * zncc_threshold, range, TemporalInvDepthRange(config, range)};
   std::vector<Match> results(points.size());
   // An empty depth range (the gate outside the configured range) leaves nothing to search.
   std::vector<Outcome> outcomes(points.size(), Outcome::kNoSegment);
-  if (rho_lo < rho_hi) {
+  if (search.search.min < search.search.max) {
     tbb::parallel_for(std::size_t{0}, points.size(), [&](std::size_t i) {
-      outcomes[i] = MatchOne(input, points[i], stereo, config, rho_lo, rho_hi, &results[i]);
+      outcomes[i] = MatchOne(input, points[i], stereo, search, &results[i]);
     });
   }
   // Counted by outcome, in the order of both Outcome and TemporalMatchStats.

@@ -49,7 +49,7 @@ struct TemporalMatchStats {
 };
 
 /// The inverse-depth interval temporal stereo searches: the configured range ∩ the depth gate.
-void TemporalInvDepthRange(const MappingConfig& config, double* rho_lo, double* rho_hi);
+InvDepthRange TemporalInvDepthRange(const TemporalStereoConfig& config, InvDepthRange range);
 
 /// Depth of a left pixel seen at `x_past` in the partner view (midpoint triangulation); ≤ 0 if
 /// the rays do not meet in front of both cameras.
@@ -57,10 +57,12 @@ double TriangulateDepth(const RectifiedStereo& stereo, const Eigen::Vector2d& x_
                         const Eigen::Vector2d& x_past, const geometry::RigidTransform& T_past_now);
 
 /// Matches for the `points` that pass every test, in their order; `stats` (optional) counts
-/// what became of each point.
+/// what became of each point. A match is accepted below 3 × static stereo's `zncc_threshold`
+/// ([ICRA code]) and kept inside `range`.
 std::vector<Match> MatchTemporal(const TemporalStereoInput& input,
                                  std::span<const Eigen::Vector2f> points,
-                                 const RectifiedStereo& stereo, const MappingConfig& config,
+                                 const RectifiedStereo& stereo, const TemporalStereoConfig& config,
+                                 double zncc_threshold, InvDepthRange range,
                                  TemporalMatchStats* stats = nullptr);
 
 }  // namespace aavio::mapping
