@@ -10,10 +10,10 @@
 #include <random>
 
 #include "aavio/io/calibration.hpp"
-#include "aavio/io/presets.hpp"
 #include "aavio/io/sequence.hpp"
 #include "aavio/io/trajectory_io.hpp"
 #include "aavio/sim/simulator.hpp"
+#include "tests/preset_config.hpp"
 #include "tests/simulated_sequence.hpp"
 
 namespace aavio::pipeline {
@@ -25,10 +25,7 @@ const aavio::testing::SimulatedSequence& Mini() {
 }
 
 OdometryConfig RpgPreset() {
-  OdometryConfig config;
-  Expected<std::vector<ConfigEntry>> entries = io::PresetEntries("rpg");
-  EXPECT_TRUE(entries.ok());
-  EXPECT_TRUE(ApplyConfigEntries(*entries, &config).ok());
+  OdometryConfig config = aavio::testing::PresetConfig("rpg");
   // 160×120 px constrains translation weakly; the rpg preset's gate is for 240×180 (cli_test).
   config.tracking.max_correction_m = 0.3;
   return config;

@@ -10,8 +10,8 @@
 
 #include "aavio/io/ground_truth_depth.hpp"
 #include "aavio/io/ply.hpp"
-#include "aavio/io/presets.hpp"
 #include "aavio/io/trajectory_io.hpp"
+#include "tests/preset_config.hpp"
 #include "tests/simulated_sequence.hpp"
 
 namespace aavio::recording {
@@ -27,10 +27,7 @@ const Mini& MiniSequence() {
 }
 
 pipeline::OdometryConfig Config() {
-  pipeline::OdometryConfig config;
-  Expected<std::vector<ConfigEntry>> entries = io::PresetEntries("rpg");
-  EXPECT_TRUE(entries.ok());
-  EXPECT_TRUE(ApplyConfigEntries(*entries, &config).ok());
+  pipeline::OdometryConfig config = aavio::testing::PresetConfig("rpg");
   config.tracking.max_correction_m = 0.3;  // 160×120 px (odometry_test)
   return config;
 }
