@@ -49,6 +49,7 @@ Status Odometry::CollectCycle(OdometryTick* tick, bool wait) {
   tick->mapped = true;
   tick->mapping = result.report;
   tick->map = result.map;
+  tick->map_observation = result.observation;
   if (result.map) PublishToTracking(result.map);  // none while the FIFO fills
   return Status::Ok();
 }
@@ -129,6 +130,7 @@ Status Odometry::Tick(TimeNs t_ns) {
     if (init.ok()) {
       tick.mapped = tick.bootstrap = true;
       tick.map = mapper_.local_map();
+      tick.map_observation = obs;
       PublishToTracking(tick.map);
       lost_ticks_ = 0;
     }
@@ -144,6 +146,7 @@ Status Odometry::Tick(TimeNs t_ns) {
         tick.mapped = true;
         if (tick.mapping.published) {
           tick.map = mapper_.local_map();
+          tick.map_observation = obs;
           PublishToTracking(tick.map);
         }
       } else if (pending_cycle_.valid()) {
@@ -155,7 +158,10 @@ Status Odometry::Tick(TimeNs t_ns) {
           CycleResult r;
           r.status = mapper_.Update(now, partners.main ? &*partners.main : nullptr, &r.report,
                                     partners.check ? &*partners.check : nullptr);
-          if (r.report.published) r.map = mapper_.local_map();
+          if (r.report.published) {
+            r.map = mapper_.local_map();
+            r.observation = now.obs;
+          }
           return r;
         });
       }

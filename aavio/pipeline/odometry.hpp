@@ -52,6 +52,8 @@ struct OdometryTick {
   double mapping_wait_ms = 0.0;  ///< concurrent mapping: waited this long for the last cycle
   mapping::MappingCycleReport mapping;  ///< of the cycle, if one ran (not for bootstraps)
   mapping::LocalMapPtr map;             ///< the map published on this tick, if any
+  /// The observation that map was made on (its time surfaces: the depth map's background).
+  std::shared_ptr<const events::Observation> map_observation;
   Eigen::Vector3d gyro_bias = Eigen::Vector3d::Zero();
 };
 
@@ -86,6 +88,7 @@ class Odometry {
     Status status = Status::Ok();
     mapping::MappingCycleReport report;
     mapping::LocalMapPtr map;
+    std::shared_ptr<const events::Observation> observation;
   };
   Status CollectCycle(OdometryTick* tick, bool wait);
 

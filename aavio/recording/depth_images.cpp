@@ -32,8 +32,14 @@ cv::Mat DisparityImage(const mapping::LocalMap& map, const mapping::RectifiedSte
 }
 
 cv::Mat InverseDepthPicture(const mapping::LocalMap& map, int width, int height,
-                            const InverseDepthColours& colours) {
+                            const InverseDepthColours& colours, const cv::Mat& time_surface) {
   cv::Mat image(height, width, CV_8UC3, cv::Scalar(0, 0, 0));
+  if (time_surface.type() == CV_8UC1 && time_surface.cols == width && time_surface.rows == height) {
+    // Dimmed, so that the dots stand out of the bright recent edges.
+    cv::Mat grey;
+    time_surface.convertTo(grey, CV_8UC1, 0.6);
+    cv::cvtColor(grey, image, cv::COLOR_GRAY2BGR);
+  }
   for (const mapping::DepthPoint& p : map.points) {
     const cv::Vec3b c = colours(p.rho);
     cv::circle(image, {static_cast<int>(std::lround(p.u)), static_cast<int>(std::lround(p.v))}, 1,

@@ -25,8 +25,10 @@ class InverseDepthColours {
 /// format; points outside the image or the 16-bit range are left out).
 cv::Mat DisparityImage(const mapping::LocalMap& map, const mapping::RectifiedStereo& stereo);
 
-/// The map's points as dots coloured by inverse depth, on black (8-bit BGR).
+/// The map's points as dots coloured by inverse depth (8-bit BGR), as the ESVO papers draw them:
+/// over the time surface of the observation the map was made on (`time_surface`, CV_8UC1, in
+/// grey), or on black where it is empty.
 cv::Mat InverseDepthPicture(const mapping::LocalMap& map, int width, int height,
-                            const InverseDepthColours& colours);
+                            const InverseDepthColours& colours, const cv::Mat& time_surface = {});
 
 }  // namespace aavio::recording

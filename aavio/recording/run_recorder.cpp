@@ -102,6 +102,7 @@ Status RunRecorder::SetGroundTruth(const RunGroundTruth& truth,
 
 void RunRecorder::AddPacket(std::size_t events, double reading_ms) {
   events_ += static_cast<std::int64_t>(events);
+  events_since_tick_ += static_cast<std::int64_t>(events);
   timings_.Add("event_reading", reading_ms, static_cast<double>(events));
 }
 
@@ -125,14 +126,17 @@ void RunRecorder::AddCycleReport(const mapping::MappingCycleReport& r) {
   timings_.Add("mapping_total", r.total_ms, r.samples);
 }
 
-Status RunRecorder::AddConfirmedMap(const mapping::LocalMap& map, bool score_written) {
+Status RunRecorder::AddConfirmedMap(const mapping::LocalMap& map,
+                                    const events::Observation* observation, bool score_written) {
   cloud_.Add(map, cloud_depth_m_);
   ++confirmed_maps_;
   confirmed_points_ += map.points.size();
   if ((confirmed_maps_ - 1) % depth_every_ != 0) return Status::Ok();
   const cv::Mat disparity = DisparityImage(map, stereo_);
-  Expected<std::string> index = depth_writer_.Add(
-      map.t_ns, disparity, InverseDepthPicture(map, stereo_.width, stereo_.height, colours_));
+  Expected<std::string> index =
+      depth_writer_.Add(map.t_ns, disparity,
+                        InverseDepthPicture(map, stereo_.width, stereo_.height, colours_,
+                                            observation ? observation->ts_left : cv::Mat()));
   if (!index) return index.status();
   if (!score_written || !scorer_) return Status::Ok();
   // Scored as `aavio eval --run` scores the file: the same disparities, turned into depth.
@@ -164,17 +168,20 @@ Status RunRecorder::AddTick(const pipeline::OdometryTick& t) {
     mapping_ms = t.mapping.total_ms;
   }
   if (t.map && t.map->confirmed)  // provisional maps are for tracking only
-    AAVIO_RETURN_IF_ERROR(AddConfirmedMap(*t.map, /*score_written=*/true));
+    AAVIO_RETURN_IF_ERROR(AddConfirmedMap(*t.map, t.map_observation.get(), /*score_written=*/true));
   if (!csv_.is_open()) {
     csv_.open(fs::path(options_.out_dir) / "timings.csv");
     csv_ << "t_s,status,time_surface_ms,aa_ms,sampling_ms,tracking_ms,iterations,mapping_ms,"
-            "map_points,lost_reason\n";
+            "map_points,lost_reason,events\n";
   }
   csv_ << StrFormat(
-      "%.6f,%s,%.4f,%.4f,%.4f,%.4f,%d,%.4f,%zu,%s\n", NsToSeconds(t.t_ns), StatusName(t.status),
-      t.representation.time_surface_ms, t.representation.aa_ms, t.representation.sampling_ms,
-      t.tracking_ms, t.registration_iterations, mapping_ms, t.map ? t.map->points.size() : 0,
-      t.status == tracking::TrackingStatus::kLost ? tracking::LostReasonName(t.lost_reason) : "");
+      "%.6f,%s,%.4f,%.4f,%.4f,%.4f,%d,%.4f,%zu,%s,%lld\n", NsToSeconds(t.t_ns),
+      StatusName(t.status), t.representation.time_surface_ms, t.representation.aa_ms,
+      t.representation.sampling_ms, t.tracking_ms, t.registration_iterations, mapping_ms,
+      t.map ? t.map->points.size() : 0,
+      t.status == tracking::TrackingStatus::kLost ? tracking::LostReasonName(t.lost_reason) : "",
+      static_cast<long long>(events_since_tick_));
+  events_since_tick_ = 0;
   return csv_ ? Status::Ok() : IoError(options_.out_dir + "/timings.csv: write failed");
 }
 
@@ -187,7 +194,9 @@ Status RunRecorder::AddMappingCycle(const pipeline::MappingCycle& cycle) {
   bootstraps_ += cycle.bootstrap ? 1 : 0;
   if (!cycle.bootstrap) AddCycleReport(cycle.report);
   const bool confirmed = cycle.map && cycle.map->confirmed;
-  if (confirmed) AAVIO_RETURN_IF_ERROR(AddConfirmedMap(*cycle.map, /*score_written=*/false));
+  if (confirmed)
+    AAVIO_RETURN_IF_ERROR(
+        AddConfirmedMap(*cycle.map, cycle.observation.get(), /*score_written=*/false));
   // Only cycles whose samples went into the fusion count for the ceiling.
   const bool fused = cycle.bootstrap || cycle.report.fused_cycles > 0;
   if (!fused || !scorer_) return Status::Ok();

@@ -88,8 +88,9 @@ class RunRecorder {
   void AddRepresentation(TimeNs t_ns, const events::RepresentationTimings& t);
   void AddCycleReport(const mapping::MappingCycleReport& r);
   /// A confirmed map: into the cloud, and every depth_every_-th into depth/ (scored there in the
-  /// odometry's modes).
-  Status AddConfirmedMap(const mapping::LocalMap& map, bool score_written);
+  /// odometry's modes), drawn over the time surface of `observation` (may be null).
+  Status AddConfirmedMap(const mapping::LocalMap& map, const events::Observation* observation,
+                         bool score_written);
 
   RunRecorderOptions options_;
   pipeline::OdometryConfig config_;
@@ -112,6 +113,7 @@ class RunRecorder {
   MappingCounts mapping_counts_;
   std::map<std::string, int> status_counts_, lost_reasons_;
   std::int64_t events_ = 0, ticks_ = 0;
+  std::int64_t events_since_tick_ = 0;  ///< timings.csv's `events`
   int bootstraps_ = 0, reinitialisations_ = 0, skipped_cycles_ = 0, mapping_cycles_ = 0;
   int confirmed_maps_ = 0;
   std::size_t confirmed_points_ = 0;

@@ -432,8 +432,13 @@ TEST(Cli, RunOdometryWritesItsOutputsAndIsDeterministic) {
   const std::string page = ReadAll(html);
   EXPECT_NE(page.find("data:image/png;base64,"), std::string::npos);
   EXPECT_NE(page.find("esvo"), std::string::npos);
+  EXPECT_NE(page.find("over the time surface"), std::string::npos);
+  // timings.csv counts each tick's events (the strips' event rate).
+  EXPECT_NE(ReadAll(std::filesystem::path(one) / "timings.csv").find(",lost_reason,events\n"),
+            std::string::npos);
   for (const char* png :
-       {"trajectory.png", "errors_over_distance.png", "depth_error.png", "timing.png"}) {
+       {"trajectory.png", "errors_over_distance.png", "depth_error.png", "timing.png",
+        "depth_maps.png", "map_from_above.png", "strips.png"}) {
     const auto path = dir / "report" / "report_files" / png;
     ASSERT_TRUE(std::filesystem::exists(path)) << png;
     EXPECT_GT(std::filesystem::file_size(path), 5000u) << png;

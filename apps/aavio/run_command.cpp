@@ -10,6 +10,7 @@
 #include <atomic>
 #include <chrono>
 #include <csignal>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
 #include <optional>
@@ -142,7 +143,9 @@ Status Run(RunOptions options, Context& ctx) {
   recording::RunRecorderOptions recorder_options;
   recorder_options.out_dir = options.out_dir;
   recorder_options.mode = ModeName(options);
-  recorder_options.sequence = opened->description.origin;
+  // Absolute, so that `aavio eval --run` and `aavio report` find it from any folder.
+  recorder_options.sequence =
+      std::filesystem::absolute(opened->description.origin).lexically_normal().string();
   recorder_options.version = VersionString();
   recorder_options.begin_ns = begin;
   recorder_options.config_yaml = io::FormatConfigYaml(

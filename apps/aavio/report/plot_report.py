@@ -2,9 +2,10 @@
 
 Run by `aavio report` (which embeds this file) as
     python3 plot_report.py DATA_DIR OUT_HTML
-DATA_DIR holds run_<i>.json (one per run: name, summary.json, evaluation, aligned positions,
-relative errors, depth errors) and timings_<i>.csv. Plots go to DATA_DIR/*.png, and report.html
-embeds them (base64), so the html file alone is the report. Headless: matplotlib's Agg backend.
+DATA_DIR holds run_<i>.json (one per run: name, its folder, summary.json, evaluation, aligned
+positions, relative errors, depth errors) and timings_<i>.csv; the depth pictures, map.ply and
+the trajectory are read from the run folders. Plots go to DATA_DIR/*.png, and report.html embeds
+them (base64), so the html file alone is the report. Headless: matplotlib's Agg backend.
 """
 import base64
 import csv
@@ -14,6 +15,7 @@ import os
 import sys
 
 import matplotlib
+import numpy as np
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
@@ -128,6 +130,156 @@ def plot_depth(runs, data_dir):
     return save(fig, data_dir, "depth_error.png")
 
 
+STATUS_COLOURS = {"ok": "tab:green", "lost": "tab:red", "no_map": "0.75"}
+
+
+def depth_pictures(run, count):
+    """Up to `count` evenly spaced (time [s], path) of a run's depth/inverse_depth_*.png."""
+    depth_dir = os.path.join(run["dir"], "depth")
+    stamps = os.path.join(depth_dir, "timestamps.txt")
+    if not os.path.exists(stamps):
+        return []
+    entries = []
+    with open(stamps) as f:
+        for line in f:
+            fields = line.split()
+            if len(fields) == 2 and not line.startswith("#"):
+                path = os.path.join(depth_dir, "inverse_depth_%s.png" % fields[1])
+                if os.path.exists(path):
+                    entries.append((float(fields[0]), path))
+    if len(entries) <= count:
+        return entries
+    return [entries[round(i * (len(entries) - 1) / (count - 1))] for i in range(count)]
+
+
+def plot_depth_pictures(runs, data_dir):
+    rows = [(run, depth_pictures(run, 5)) for run in runs[:3]]
+    rows = [(run, pictures) for run, pictures in rows if pictures]
+    if not rows:
+        return None
+    columns = max(len(p) for _, p in rows)
+    fig, axes = plt.subplots(len(rows), columns, figsize=(3.2 * columns, 2.6 * len(rows)),
+                             squeeze=False)
+    for r, (run, pictures) in enumerate(rows):
+        t0 = pictures[0][0]
+        for c in range(columns):
+            ax = axes[r][c]
+            ax.axis("off")
+            if c < len(pictures):
+                ax.imshow(plt.imread(pictures[c][1]))
+                ax.set_title("%s  %.1f s" % (run["name"], pictures[c][0] - t0), fontsize=8)
+    return save(fig, data_dir, "depth_maps.png")
+
+
+def read_ply(path):
+    """map.ply as aavio writes it (binary little endian, float xyz + uchar rgb)."""
+    with open(path, "rb") as f:
+        vertices = 0
+        while True:
+            line = f.readline()
+            if not line:
+                return None
+            line = line.decode("ascii", "replace").strip()
+            if line.startswith("element vertex"):
+                vertices = int(line.split()[2])
+            if line == "end_header":
+                break
+        dtype = np.dtype([("x", "<f4"), ("y", "<f4"), ("z", "<f4"), ("r", "u1"), ("g", "u1"),
+                          ("b", "u1")])
+        return np.frombuffer(f.read(vertices * dtype.itemsize), dtype=dtype, count=vertices)
+
+
+def read_positions(path):
+    positions = []
+    with open(path) as f:
+        for line in f:
+            fields = line.replace(",", " ").split()
+            if len(fields) >= 4 and not line.startswith("#"):
+                positions.append([float(v) for v in fields[1:4]])
+    return np.array(positions).reshape(-1, 3)
+
+
+def plot_map_from_above(runs, data_dir):
+    shown = []
+    for run in runs[:3]:
+        ply = os.path.join(run["dir"], "map.ply")
+        cloud = read_ply(ply) if os.path.exists(ply) else None
+        if cloud is not None and len(cloud) > 0:
+            shown.append((run, cloud))
+    if not shown:
+        return None
+    fig, axes = plt.subplots(1, len(shown), figsize=(6.5 * len(shown), 6), squeeze=False)
+    for ax, (run, cloud) in zip(axes[0], shown):
+        xyz = np.stack([cloud["x"], cloud["y"], cloud["z"]], axis=1)
+        rgb = np.stack([cloud["r"], cloud["g"], cloud["b"]], axis=1) / 255.0
+        if len(xyz) > 200000:
+            keep = np.linspace(0, len(xyz) - 1, 200000).astype(int)
+            xyz, rgb = xyz[keep], rgb[keep]
+        trajectory_path = os.path.join(run["dir"], "stamped_traj_estimate.txt")
+        trajectory = read_positions(trajectory_path) if os.path.exists(trajectory_path) else None
+        # The world of the odometry is its first camera's frame (x right, y down, z forward): seen
+        # from above is x-z. Runs in the ground truth's world: the plane of its two largest extents.
+        if run["summary"].get("mode") in ("full", "esvo") or trajectory is None:
+            a, b = 0, 2
+        else:
+            extent = trajectory.max(axis=0) - trajectory.min(axis=0)
+            a, b = sorted(np.argsort(-extent)[:2])
+        ax.scatter(xyz[:, a], xyz[:, b], c=rgb, s=0.3 if len(xyz) > 50000 else 2.0, linewidths=0)
+        if trajectory is not None and len(trajectory):
+            ax.plot(trajectory[:, a], trajectory[:, b], "k-", lw=1.2, label="estimated trajectory")
+            ax.plot(trajectory[0, a], trajectory[0, b], "ko", ms=4)
+            ax.legend(fontsize=8, loc="upper right")
+        ax.set_title("%s: map.ply from above (%d points; red near, blue far)" % (run["name"], len(cloud)),
+                     fontsize=9)
+        ax.set_xlabel("xyz"[a] + " [m]")
+        ax.set_ylabel("xyz"[b] + " [m]")
+        ax.set_aspect("equal", adjustable="datalim")
+        ax.grid(alpha=0.3)
+    return save(fig, data_dir, "map_from_above.png")
+
+
+def plot_strips(runs, data_dir):
+    timed = [run for run in runs if run["timings"]]
+    if not timed:
+        return None
+    fig, axes = plt.subplots(3, 1, figsize=(14, 6.5), sharex=True,
+                             gridspec_kw={"height_ratios": [3, 0.5 + 0.5 * len(timed), 3]})
+    for k, run in enumerate(timed):
+        rows = run["timings"]
+        t0 = float(rows[0]["t_s"])
+        t = np.array([float(r["t_s"]) - t0 for r in rows])
+        if "events" in rows[0]:
+            events = np.array([float(r["events"]) for r in rows])
+            dt = np.diff(np.concatenate([[t[0] - (t[1] - t[0] if len(t) > 1 else 0.01)], t]))
+            axes[0].plot(t, events / np.maximum(dt, 1e-6) / 1e6, color=COLOURS[k % 6], lw=0.8,
+                         label=run["name"])
+        # The tracking status of each tick, one band per run.
+        for status, colour in STATUS_COLOURS.items():
+            ticks = [ti for ti, r in zip(t, rows) if r["status"] == status]
+            width = (t[1] - t[0]) if len(t) > 1 else 0.01
+            axes[1].broken_barh([(ti - width / 2, width) for ti in ticks], (k - 0.4, 0.8),
+                                color=colour, label=status if k == 0 else None)
+        # A tick lists the map it published; tracking uses that map until the next one.
+        published = [float(r["map_points"]) for r in rows]
+        in_use, current = [], 0.0
+        for n in published:
+            current = n if n > 0 else current
+            in_use.append(current)
+        axes[2].step(t, in_use, where="post", color=COLOURS[k % 6], lw=0.8, label=run["name"])
+    axes[0].set_ylabel("events [M/s]")
+    axes[0].set_title("event rate (both cameras), tracking status and map size over time")
+    axes[0].grid(alpha=0.3)
+    axes[0].legend(fontsize=8, loc="upper right")
+    axes[1].set_yticks(range(len(timed)))
+    axes[1].set_yticklabels([run["name"] for run in timed], fontsize=8)
+    axes[1].set_ylim(-0.6, len(timed) - 0.4)
+    axes[1].legend(fontsize=7, loc="lower left", bbox_to_anchor=(1.0, 0.0), frameon=False)
+    axes[2].set_ylabel("points of the map tracked")
+    axes[2].set_xlabel("data time [s]")
+    axes[2].grid(alpha=0.3)
+    return save(fig, data_dir, "strips.png")
+
+
 def plot_timing(runs, data_dir):
     fig, axes = plt.subplots(1, 2, figsize=(14, 4.5))
     width = 0.8 / max(1, len(runs))
@@ -206,6 +358,12 @@ def main():
         (plot_errors_over_distance(runs, data_dir) if any(r.get("evaluation") for r in runs) else None,
          "Relative errors over sub-trajectories of fixed distance (rpg_trajectory_evaluation), "
          "and the absolute error along the path"),
+        (plot_depth_pictures(runs, data_dir),
+         "Depth maps over the time surface they were made on (depth/inverse_depth_*.png; red "
+         "near, blue far)"),
+        (plot_map_from_above(runs, data_dir), "The global map (map.ply) seen from above, with the "
+         "estimated trajectory"),
+        (plot_strips(runs, data_dir), "Event rate, tracking status per tick and map size over time"),
         (plot_depth(runs, data_dir), "Relative depth error of the runs' depth maps"),
         (plot_timing(runs, data_dir), "Runtime per stage and per tick"),
     ]
