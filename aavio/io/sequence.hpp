@@ -5,9 +5,10 @@
 ///   name: box2_twin
 ///   calibration: calibration            # ESVO folder, left.yaml, or DSEC cam_to_cam.yaml
 ///   events:
-///     left: events/left/events.h5       # .h5 DSEC | .bag ROS1 | .txt | .raw | .db3 ROS 2 |
-///     .aedat4 right: events/right/events.h5 left_topic: /davis/left/events    # bags (these are
-///     the defaults); .aedat4: stream id or name right_topic: /davis/right/events
+///     left: events/left/events.h5       # .h5 | .bag | .txt | .raw | .db3 / .mcap | .aedat4
+///     right: events/right/events.h5
+///     left_topic: /davis/left/events    # bags (the defaults); .aedat4: stream id or name
+///     right_topic: /davis/right/events
 ///   imu:                                # optional
 ///     path: imu.txt                     # .txt (layout: ecd | tum_vie), .bag (topic) or .aedat4
 ///     topic: /davis/left/imu            # bags; empty = the only sensor_msgs/Imu topic
