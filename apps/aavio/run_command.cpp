@@ -11,6 +11,7 @@
 #include <chrono>
 #include <csignal>
 #include <filesystem>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
 #include <optional>
@@ -68,8 +69,9 @@ const char* ModeName(const RunOptions& o) {
 
 // The sequence's ground truth, for the recorder to score against. The modes on ground truth
 // need it; the full odometry evaluates where the sequence has a TUM text trajectory.
-Status AttachGroundTruth(const OpenedSequence& s, bool required, recording::RunRecorder* recorder,
-                         std::vector<geometry::StampedPose>* gt_poses) {
+Status LoadGroundTruth(const OpenedSequence& s, bool required,
+                       std::optional<recording::RunGroundTruth>* truth,
+                       std::vector<geometry::StampedPose>* gt_poses) {
   const io::SequenceDescription& d = s.description;
   if (!required && !(d.gt_trajectory && d.gt_trajectory->format == io::SourceFormat::kText))
     return Status::Ok();
@@ -78,13 +80,13 @@ Status AttachGroundTruth(const OpenedSequence& s, bool required, recording::RunR
                            ": --gt-poses and --gt-map need ground truth, and the sequence names "
                            "no ground_truth.trajectory");
   }
-  Expected<recording::RunGroundTruth> truth = recording::RunGroundTruth::Of(d, s.calibration.rig);
-  if (!truth) return truth.status();
-  Expected<std::vector<geometry::StampedPose>> poses =
-      io::ReadTumTrajectory(truth->trajectory_path);
+  Expected<recording::RunGroundTruth> of = recording::RunGroundTruth::Of(d, s.calibration.rig);
+  if (!of) return of.status();
+  Expected<std::vector<geometry::StampedPose>> poses = io::ReadTumTrajectory(of->trajectory_path);
   if (!poses) return poses.status();
-  *gt_poses = *poses;
-  return recorder->SetGroundTruth(*truth, std::move(*poses));
+  *truth = std::move(*of);
+  *gt_poses = std::move(*poses);
+  return Status::Ok();
 }
 
 void PrintOdometryRun(const recording::RunRecord& r, Context& ctx) {
@@ -116,6 +118,90 @@ void PrintOdometryRun(const recording::RunRecord& r, Context& ctx) {
   }
 }
 
+// The end-of-run lines: what ran, how fast, how accurate, where the outputs are.
+void PrintRun(const recording::RunRecord& record, const RunOptions& options,
+              const std::optional<RelativeError100Ms>& tracking_error, bool gyro_prior,
+              Context& ctx) {
+  const nlohmann::json& s = record.summary;
+  if (options.gt_poses) {
+    ctx.out << StrFormat(
+        "%smapped %.2f s of data in %.1f s (real-time factor %.2f): %d cycles, %.0f map points "
+        "per depth map\n",
+        s["interrupted"].get<bool>() ? "interrupted: " : "", record.data_s, record.wall_s,
+        s["real_time_factor"].get<double>(), s["mapping_cycles"].get<int>(),
+        s["mean_map_points"].get<double>());
+  } else {
+    PrintOdometryRun(record, ctx);
+  }
+  if (tracking_error) {
+    ctx.out << StrFormat(
+        "tracked against ground-truth maps (gyroscope prior %s): RPE over 100 ms: rotation "
+        "%.4f deg, translation %.4f m (RMSE)\n",
+        gyro_prior ? "on" : "off", tracking_error->rotation_deg_rmse,
+        tracking_error->translation_m_rmse);
+  }
+  if (record.depth) ctx.out << recording::DepthTable(*record.depth);
+  if (record.sample_ceiling) ctx.out << recording::SampleCeilingLine(*record.sample_ceiling);
+  ctx.out << "wrote " << options.out_dir << "/{"
+          << (s["poses"].get<std::size_t>() > 0 ? "stamped_traj_estimate.txt,timings.csv," : "")
+          << "summary.json,config.yaml,map.ply"
+          << (s["depth_maps_written"].get<int>() > 0 ? ",depth/" : "") << "}\n";
+}
+
+struct Fed {
+  TimeNs last_t = 0;  ///< the data time processed up to
+  bool interrupted = false;
+};
+
+// Feeds the packets of [begin, end) to `process` (decoded on a thread of their own, up to 50
+// packets ahead), counting them in the recorder, with progress on a terminal; Ctrl-C stops.
+Expected<Fed> FeedPackets(io::SequenceReader* reader, TimeNs begin, TimeNs end,
+                          recording::RunRecorder* recorder,
+                          const std::function<Status(const io::SensorPacket&, TimeNs)>& process,
+                          bool progress, Context& ctx) {
+  io::PrefetchingReader prefetching(reader, 50);
+  const auto wall_start = Clock::now();
+  io::SensorPacket packet;
+  Fed fed{begin, false};
+  g_interrupted.store(false);
+  auto previous = std::signal(SIGINT, OnInterrupt);
+  Status status = Status::Ok();
+  for (std::int64_t packets = 0;; ++packets) {
+    if (g_interrupted.load()) {
+      fed.interrupted = true;
+      break;
+    }
+    const auto read_start = Clock::now();
+    Expected<bool> more = prefetching.Next(&packet);
+    if (!more) {
+      status = more.status();
+      break;
+    }
+    if (!*more || packet.t_begin_ns >= end) break;
+    recorder->AddPacket(
+        packet.left.size() + packet.right.size(),
+        std::chrono::duration<double, std::milli>(Clock::now() - read_start).count());
+    const TimeNs t_end = std::min(packet.t_end_ns, end);
+    status = process(packet, t_end);
+    if (!status.ok()) break;
+    fed.last_t = t_end;
+    if (progress && packets % 50 == 0) {
+      const double done = NsToSeconds(fed.last_t - begin);
+      const double wall = std::chrono::duration<double>(Clock::now() - wall_start).count();
+      const std::map<std::string, int>& counts = recorder->status_counts();
+      auto count = [&](const char* key) { return counts.count(key) ? counts.at(key) : 0; };
+      ctx.err << StrFormat("\r%.1f / %.1f s of data, %.2fx real time, tracking ok %d, lost %d   ",
+                           done, NsToSeconds(end - begin), wall > 0 ? done / wall : 0.0,
+                           count("ok"), count("lost"))
+              << std::flush;
+    }
+  }
+  std::signal(SIGINT, previous);
+  if (progress) ctx.err << "\r" << std::string(90, ' ') << "\r";
+  if (!status.ok()) return status;
+  return fed;
+}
+
 Status Run(RunOptions options, Context& ctx) {
   Expected<OpenedSequence> opened = OpenSequence(options.sequence, options.calibration);
   if (!opened) return opened.status();
@@ -140,6 +226,25 @@ Status Run(RunOptions options, Context& ctx) {
                     static_cast<std::size_t>(config->pipeline.num_threads));
   }
 
+  // Everything that can fail on the input before the output folder is touched.
+  std::optional<recording::RunGroundTruth> truth;
+  std::vector<geometry::StampedPose> gt_list;
+  AAVIO_RETURN_IF_ERROR(
+      LoadGroundTruth(*opened, options.gt_poses || options.gt_map, &truth, &gt_list));
+  geometry::PoseBuffer gt_poses(0);
+  for (const geometry::StampedPose& p : gt_list)
+    AAVIO_RETURN_IF_ERROR(gt_poses.Insert(p.t_ns, p.T_world_body));
+  std::optional<GroundTruthMaps> gt_maps;
+  geometry::RigidTransform start_pose;
+  if (options.gt_map) {
+    Expected<GroundTruthMaps> maps = GroundTruthMaps::Create(*opened, gt_poses);
+    if (!maps) return maps.status();
+    gt_maps.emplace(std::move(*maps));
+    Expected<geometry::RigidTransform> at_start = gt_poses.Query(begin);
+    if (!at_start) return at_start.status().WithContext("ground truth at the start");
+    start_pose = *at_start;
+  }
+
   recording::RunRecorderOptions recorder_options;
   recorder_options.out_dir = options.out_dir;
   recorder_options.mode = ModeName(options);
@@ -156,12 +261,7 @@ Status Run(RunOptions options, Context& ctx) {
       recording::RunRecorder::Open(recorder_options, rig, *config);
   if (!opened_recorder) return opened_recorder.status();
   recording::RunRecorder& recorder = **opened_recorder;
-  std::vector<geometry::StampedPose> gt_list;
-  AAVIO_RETURN_IF_ERROR(
-      AttachGroundTruth(*opened, options.gt_poses || options.gt_map, &recorder, &gt_list));
-  geometry::PoseBuffer gt_poses(0);
-  for (const geometry::StampedPose& p : gt_list)
-    AAVIO_RETURN_IF_ERROR(gt_poses.Insert(p.t_ns, p.T_world_body));
+  if (truth) AAVIO_RETURN_IF_ERROR(recorder.SetGroundTruth(*truth, gt_list));
 
   // The front end of the mode, fed packet by packet.
   Status callback_status = Status::Ok();
@@ -170,7 +270,6 @@ Status Run(RunOptions options, Context& ctx) {
   };
   std::optional<pipeline::Odometry> odometry;
   std::optional<pipeline::MappingFrontEnd> mapping;
-  std::optional<GroundTruthMaps> gt_maps;
   if (options.gt_poses) {
     mapping.emplace(rig, *config, gt_poses, begin);
     mapping->on_tick = [&](TimeNs t_ns, const events::RepresentationTimings& t) {
@@ -178,15 +277,6 @@ Status Run(RunOptions options, Context& ctx) {
     };
     mapping->on_cycle = [&](const pipeline::MappingCycle& c) { keep(recorder.AddMappingCycle(c)); };
   } else {
-    geometry::RigidTransform start_pose;
-    if (options.gt_map) {
-      Expected<GroundTruthMaps> maps = GroundTruthMaps::Create(*opened, gt_poses);
-      if (!maps) return maps.status();
-      gt_maps.emplace(std::move(*maps));
-      Expected<geometry::RigidTransform> at_start = gt_poses.Query(begin);
-      if (!at_start) return at_start.status().WithContext("ground truth at the start");
-      start_pose = *at_start;
-    }
     odometry.emplace(rig, *config, begin, start_pose, /*run_mapping=*/!options.gt_map);
     odometry->on_tick = [&](const pipeline::OdometryTick& t) { keep(recorder.AddTick(t)); };
     if (gt_maps) {
@@ -198,58 +288,21 @@ Status Run(RunOptions options, Context& ctx) {
     }
   }
 
-  // Files are decoded on a thread of their own, up to 50 packets ahead.
-  io::PrefetchingReader prefetching(reader, 50);
-  const bool progress = !options.quiet && isatty(STDERR_FILENO);
-  const auto wall_start = Clock::now();
-  io::SensorPacket packet;
-  bool interrupted = false;
-  TimeNs last_t = begin;
-  g_interrupted.store(false);
-  auto previous = std::signal(SIGINT, OnInterrupt);
-  Status loop_status = Status::Ok();
-  for (std::int64_t packets = 0;; ++packets) {
-    if (g_interrupted.load()) {
-      interrupted = true;
-      break;
-    }
-    const auto read_start = Clock::now();
-    Expected<bool> more = prefetching.Next(&packet);
-    if (!more) {
-      loop_status = more.status();
-      break;
-    }
-    if (!*more || packet.t_begin_ns >= end) break;
-    const std::size_t events = packet.left.size() + packet.right.size();
-    recorder.AddPacket(
-        events, std::chrono::duration<double, std::milli>(Clock::now() - read_start).count());
-    const TimeNs t_end = std::min(packet.t_end_ns, end);
-    if (odometry) {
-      loop_status = odometry->Process(packet.left, packet.right, packet.imu, t_end);
-      recorder.AddStage("event_insertion", odometry->last_insertion_ms(),
-                        static_cast<double>(events));
-    } else {
-      loop_status = mapping->Process(packet.left, packet.right, t_end);
-    }
-    if (loop_status.ok()) loop_status = callback_status;
-    if (!loop_status.ok()) break;
-    last_t = t_end;
-    if (progress && packets % 50 == 0) {
-      const double done = NsToSeconds(last_t - begin);
-      const double wall = std::chrono::duration<double>(Clock::now() - wall_start).count();
-      const std::map<std::string, int>& counts = recorder.status_counts();
-      ctx.err << StrFormat("\r%s %.1f / %.1f s of data, %.2fx real time",
-                           recorder_options.mode.c_str(), done, NsToSeconds(end - begin),
-                           wall > 0 ? done / wall : 0.0);
-      if (odometry)
-        ctx.err << StrFormat(", tracking ok %d, lost %d", counts.count("ok") ? counts.at("ok") : 0,
-                             counts.count("lost") ? counts.at("lost") : 0);
-      ctx.err << "   " << std::flush;
-    }
-  }
-  std::signal(SIGINT, previous);
-  if (progress) ctx.err << "\r" << std::string(90, ' ') << "\r";
-  AAVIO_RETURN_IF_ERROR(loop_status);
+  const auto fed = FeedPackets(
+      reader, begin, end, &recorder,
+      [&](const io::SensorPacket& packet, TimeNs t_end) {
+        Status status = Status::Ok();
+        if (odometry) {
+          status = odometry->Process(packet.left, packet.right, packet.imu, t_end);
+          recorder.AddStage("event_insertion", odometry->last_insertion_ms(),
+                            static_cast<double>(packet.left.size() + packet.right.size()));
+        } else {
+          status = mapping->Process(packet.left, packet.right, t_end);
+        }
+        return status.ok() ? callback_status : status;
+      },
+      !options.quiet && isatty(STDERR_FILENO), ctx);
+  if (!fed) return fed.status();
   odometry.reset();  // a mapping cycle still running finishes here
 
   nlohmann::json extra = nlohmann::json::object();
@@ -261,37 +314,14 @@ Status Run(RunOptions options, Context& ctx) {
                           {"translation_m_rmse", tracking_error->translation_m_rmse},
                           {"pairs", tracking_error->pairs}};
   }
-  Expected<recording::RunRecord> record = recorder.Finish(interrupted, last_t, extra);
+  Expected<recording::RunRecord> record = recorder.Finish(fed->interrupted, fed->last_t, extra);
   if (!record) return record.status();
-
-  const nlohmann::json& s = record->summary;
-  if (options.gt_poses) {
-    ctx.out << StrFormat(
-        "%smapped %.2f s of data in %.1f s (real-time factor %.2f): %d cycles, %.0f map points "
-        "per depth map\n",
-        interrupted ? "interrupted: " : "", record->data_s, record->wall_s,
-        s["real_time_factor"].get<double>(), s["mapping_cycles"].get<int>(),
-        s["mean_map_points"].get<double>());
-  } else {
-    PrintOdometryRun(*record, ctx);
-  }
-  if (tracking_error) {
-    ctx.out << StrFormat(
-        "tracked against ground-truth maps (gyroscope prior %s): RPE over 100 ms: rotation "
-        "%.4f deg, translation %.4f m (RMSE)\n",
-        config->imu.use_gyro_prior ? "on" : "off", tracking_error->rotation_deg_rmse,
-        tracking_error->translation_m_rmse);
-  }
-  if (record->depth) ctx.out << recording::DepthTable(*record->depth);
-  if (record->sample_ceiling) ctx.out << recording::SampleCeilingLine(*record->sample_ceiling);
-  ctx.out << "wrote " << options.out_dir << "/{"
-          << (recorder.trajectory().empty() ? "" : "stamped_traj_estimate.txt,timings.csv,")
-          << "summary.json,config.yaml,map.ply"
-          << (s["depth_maps_written"].get<int>() > 0 ? ",depth/" : "") << "}\n";
+  PrintRun(*record, options, tracking_error, config->imu.use_gyro_prior, ctx);
   return Status::Ok();
 }
 
 }  // namespace
+
 void RegisterRun(CLI::App& app, Context& ctx) {
   auto options = std::make_shared<RunOptions>();
   CLI::App* sub = app.add_subcommand(
