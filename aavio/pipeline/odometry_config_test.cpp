@@ -2,6 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <set>
+
+#include "aavio/io/presets.hpp"
+
 namespace aavio::pipeline {
 namespace {
 
@@ -35,6 +39,40 @@ TEST(OdometryConfig, EveryKeyHasAOneLineDescription) {
     EXPECT_EQ(doc.find('\n'), std::string::npos) << key;
     EXPECT_LE(doc.size(), 100u) << key;
   }
+}
+
+// The ESVO-like overlay (`aavio run --esvo`) sets every aavio addition — each key whose
+// description marks it "(aavio)" — to the reference codes' behaviour, which is the addition's
+// default (off), except snap_to_edge_px, on by default: so no preset's addition survives in the
+// baseline.
+TEST(OdometryConfig, TheEsvoOverlayTurnsOffEveryAavioAddition) {
+  Expected<std::vector<ConfigEntry>> overlay = io::OverlayEntries("esvo");
+  ASSERT_TRUE(overlay.ok()) << overlay.status().message();
+  std::set<std::string> set_by_overlay;
+  for (const ConfigEntry& e : *overlay)
+    set_by_overlay.insert(e.key);
+  OdometryConfig defaults;
+  const auto default_index = BuildFieldIndex(defaults);
+  int additions = 0;
+  for (const char* preset : {"rpg", "dsec"}) {
+    SCOPED_TRACE(preset);
+    OdometryConfig config;
+    Expected<std::vector<ConfigEntry>> entries = io::PresetEntries(preset);
+    ASSERT_TRUE(entries.ok());
+    ASSERT_TRUE(ApplyConfigEntries(*entries, &config).ok());
+    ASSERT_TRUE(ApplyConfigEntries(*overlay, &config).ok());
+    const auto index = BuildFieldIndex(config);
+    additions = 0;
+    for (const std::string& key : default_index.order) {
+      if (default_index.fields.at(key).doc.find("(aavio)") == std::string::npos) continue;
+      ++additions;
+      EXPECT_TRUE(set_by_overlay.count(key)) << key << " is an aavio addition the overlay leaves";
+      const std::string expected =
+          key == "mapping.snap_to_edge_px" ? "0.0" : default_index.fields.at(key).get().scalar;
+      EXPECT_EQ(index.fields.at(key).get().scalar, expected) << key;
+    }
+  }
+  EXPECT_GE(additions, 15);
 }
 
 TEST(OdometryConfig, ValidationNamesTheFieldAndTheRule) {
