@@ -19,6 +19,7 @@ struct EsvoCameraFile {
   geometry::ProjectionMatrix P;
   std::optional<yaml::RosMatrix> T_right_left;  // unchecked: see the 9-value rule
   std::optional<geometry::RigidTransform> T_b_c;
+  std::vector<std::string> warnings;  // what was assumed to read the file
 };
 
 Expected<DistortionModel> ParseDistortionModel(const std::string& name, const std::string& where) {
@@ -83,6 +84,19 @@ Expected<EsvoCameraFile> ReadEsvoCamera(const std::string& file) {
   if (!dist_node) return dist_node.status();
   Expected<yaml::RosMatrix> dist = yaml::ToRosMatrix(*dist_node, file, "distortion_coefficients");
   if (!dist) return dist.status();
+  std::vector<std::string> warnings;
+  // VECtor's published files: plumb_bob with 5 values under a 1x4 header. Five values have one
+  // reading for plumb_bob (k1 k2 p1 p2 k3); for another model, or another count, the clear error.
+  if (*model == DistortionModel::kRadtan && dist->rows == 1 && dist->cols == 4 &&
+      dist->data.size() == 5) {
+    dist->cols = 5;
+    char k3[32];
+    std::snprintf(k3, sizeof(k3), "%g", dist->data[4]);
+    warnings.push_back(dist->where +
+                       ": distortion_coefficients declares 1x4 but lists 5 values; read them as "
+                       "plumb_bob k1 k2 p1 p2 k3 (k3 = " +
+                       std::string(k3) + "). Set cols: 5 if that is right");
+  }
   Expected<Eigen::MatrixXd> dist_checked =
       yaml::CheckedRosMatrix(*dist, "distortion_coefficients", dist->rows, dist->cols);
   if (!dist_checked) return dist_checked.status();
@@ -100,7 +114,7 @@ Expected<EsvoCameraFile> ReadEsvoCamera(const std::string& file) {
   Expected<Eigen::MatrixXd> P = ros("projection_matrix", 3, 4);
   if (!P) return P.status();
 
-  EsvoCameraFile out{*camera, *R, *P, std::nullopt, std::nullopt};
+  EsvoCameraFile out{*camera, *R, *P, std::nullopt, std::nullopt, std::move(warnings)};
   if (YAML::Node t = n["T_right_left"]) {
     Expected<yaml::RosMatrix> m = yaml::ToRosMatrix(t, file, "T_right_left");
     if (!m) return m.status();
@@ -127,7 +141,8 @@ Expected<LoadedCalibration> LoadEsvoCalibration(const std::string& left_yaml,
   Expected<EsvoCameraFile> right = ReadEsvoCamera(right_yaml);
   if (!right) return right.status();
 
-  std::vector<std::string> warnings;
+  std::vector<std::string> warnings = left->warnings;
+  warnings.insert(warnings.end(), right->warnings.begin(), right->warnings.end());
   geometry::StereoRigParams params{left->camera, right->camera, left->R_rect, right->R_rect,
                                    left->P,      right->P,      {},           left->T_b_c};
 

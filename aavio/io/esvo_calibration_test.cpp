@@ -86,12 +86,19 @@ TEST(EsvoCalibration, RefusesMalformedFilesWithPreciseMessages) {
     std::string left, right, expected;
   };
   const std::vector<Case> cases = {
-      // VECtor's upstream defect: cols 4 but 5 values.
+      // cols 4 but 6 values: no reading of them is the obvious one.
       {Replace(L, "data: [-0.336733, 0.111789, -0.00140053, -0.000459594]",
-               "data: [-0.336733, 0.111789, -0.00140053, -0.000459594, 0.0]"),
+               "data: [-0.336733, 0.111789, -0.00140053, -0.000459594, 0.0, 0.0]"),
        R,
        "left.yaml:10: distortion_coefficients declares rows x cols = 1x4 = 4 values but its "
-       "data lists 5; if the data are right, set cols: 5"},
+       "data lists 6; if the data are right, set cols: 6"},
+      // 5 values under 1x4 for an equidistant camera (4 coefficients): ambiguous, refused.
+      {Replace(Replace(L, "data: [-0.336733, 0.111789, -0.00140053, -0.000459594]",
+                       "data: [-0.336733, 0.111789, -0.00140053, -0.000459594, 0.0]"),
+               "distortion_model: plumb_bob", "distortion_model: equidistant"),
+       R,
+       "left.yaml:10: distortion_coefficients declares rows x cols = 1x4 = 4 values but its "
+       "data lists 5"},
       {Replace(L, "image_height: 180\n", ""), R, "left.yaml: missing key 'image_height'"},
       {L, Replace(R, "projection_matrix:", "projection:"),
        "right.yaml: missing key 'projection_matrix'"},
@@ -125,6 +132,30 @@ TEST(EsvoCalibration, RefusesMalformedFilesWithPreciseMessages) {
     EXPECT_NE(message.find(c.expected), std::string::npos)
         << "expected: " << c.expected << "\n got: " << message;
   }
+}
+
+// VECtor's published files: plumb_bob with 5 values under a 1x4 header. The one reading of five
+// plumb_bob values is k1 k2 p1 p2 k3; the file loads, and a warning says what was assumed.
+TEST(EsvoCalibration, ReadsFivePlumbBobValuesUnderAFourColumnHeaderWithAWarning) {
+  const std::string left =
+      Replace(testing::kRpgLeftYaml, "data: [-0.336733, 0.111789, -0.00140053, -0.000459594]",
+              "data: [-0.336733, 0.111789, -0.00140053, -0.000459594, 0.0125]");
+  Expected<LoadedCalibration> c = LoadPair(left, testing::kRpgRightYaml);
+  ASSERT_TRUE(c.ok()) << c.status().message();
+  const std::vector<double>& k = c->rig.left().intrinsics().coeffs;
+  ASSERT_EQ(k.size(), 5u);
+  EXPECT_DOUBLE_EQ(k[4], 0.0125);
+  ASSERT_EQ(c->warnings.size(), 1u);
+  EXPECT_NE(c->warnings[0].find("left.yaml:10: distortion_coefficients declares 1x4 but lists 5 "
+                                "values; read them as plumb_bob k1 k2 p1 p2 k3 (k3 = 0.0125)"),
+            std::string::npos)
+      << c->warnings[0];
+  // The same file with the header put right loads identically, without the warning.
+  Expected<LoadedCalibration> fixed =
+      LoadPair(Replace(left, "rows: 1\n  cols: 4", "rows: 1\n  cols: 5"), testing::kRpgRightYaml);
+  ASSERT_TRUE(fixed.ok()) << fixed.status().message();
+  EXPECT_TRUE(fixed->warnings.empty());
+  EXPECT_EQ(fixed->rig.left().intrinsics().coeffs, k);
 }
 
 TEST(EsvoCalibration, MissingExtrinsicIsDerivedWithAWarning) {
