@@ -127,6 +127,7 @@ Status Odometry::Tick(TimeNs t_ns) {
     // Bootstrap (SGM) on this tick at the current pose; too few points: try the next tick.
     const Status init = mapper_.Initialize(now);
     if (!init.ok() && init.code() != StatusCode::kFailedPrecondition) return init;
+    if (!init.ok()) tick.bootstrap_failure = init.message();
     if (init.ok()) {
       tick.mapped = tick.bootstrap = true;
       tick.map = mapper_.local_map();

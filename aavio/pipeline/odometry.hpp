@@ -25,6 +25,7 @@
 #include <functional>
 #include <future>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "aavio/events/representation_builder.hpp"
@@ -45,11 +46,14 @@ struct OdometryTick {
   double tracking_ms = 0.0;  ///< prediction + registration
   double prediction_ms = 0.0;
   events::RepresentationTimings representation;
-  bool mapped = false;           ///< a mapping cycle ran on this tick
-  bool bootstrap = false;        ///< ... and it was an SGM (re-)initialisation that succeeded
-  bool reinitialised = false;    ///< tracking was lost too long: mapping was reset here
-  bool mapping_skipped = false;  ///< real-time mode: a cycle was due but the last still ran
-  double mapping_wait_ms = 0.0;  ///< concurrent mapping: waited this long for the last cycle
+  bool mapped = false;     ///< a mapping cycle ran on this tick
+  bool bootstrap = false;  ///< ... and it was an SGM (re-)initialisation that succeeded
+  /// A (re-)initialisation was tried on this tick and found too few points: why (it is tried
+  /// again on the next tick).
+  std::string bootstrap_failure;
+  bool reinitialised = false;           ///< tracking was lost too long: mapping was reset here
+  bool mapping_skipped = false;         ///< real-time mode: a cycle was due but the last still ran
+  double mapping_wait_ms = 0.0;         ///< concurrent mapping: waited this long for the last cycle
   mapping::MappingCycleReport mapping;  ///< of the cycle, if one ran (not for bootstraps)
   mapping::LocalMapPtr map;             ///< the map published on this tick, if any
   /// The observation that map was made on (its time surfaces: the depth map's background).

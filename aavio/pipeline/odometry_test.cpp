@@ -92,6 +92,27 @@ TEST(Odometry, BootstrapsOnceThenTracks) {
       << end.transpose() << " vs " << truth_moved.transpose();
 }
 
+// Too few points for the first map: every tick says why and tries again; none tracks.
+TEST(Odometry, SaysWhyTheBootstrapFailsAndRetriesEveryTick) {
+  OdometryConfig config = RpgPreset();
+  config.mapping.bootstrap.min_points = 1000000;
+  const std::vector<OdometryTick> ticks = RunMini(config);
+  ASSERT_GT(ticks.size(), 100u);
+  for (const OdometryTick& t : ticks) {
+    EXPECT_FALSE(t.bootstrap);
+    EXPECT_EQ(t.status, tracking::TrackingStatus::kNoMap);
+    EXPECT_NE(t.bootstrap_failure.find("mapping.bootstrap.min_points = 1000000"),
+              std::string::npos)
+        << t.bootstrap_failure;
+  }
+  // With enough points the same ticks report no failure once the map stands.
+  const std::vector<OdometryTick> normal = RunMini(RpgPreset());
+  std::size_t failures = 0;
+  for (const OdometryTick& t : normal)
+    failures += !t.bootstrap_failure.empty();
+  EXPECT_LT(failures, 20u);
+}
+
 TEST(Odometry, RecoversAfterScrambledEventsAtTheHeldPose) {
   const OdometryConfig config = RpgPreset();
   const std::vector<OdometryTick> ticks = RunMini(config, 0.6, 0.9);

@@ -159,6 +159,10 @@ Status RunRecorder::AddTick(const pipeline::OdometryTick& t) {
   }
   if (t.mapping_wait_ms > 0.0) timings_.Add("mapping_wait", t.mapping_wait_ms);
   bootstraps_ += t.bootstrap;
+  if (!t.bootstrap_failure.empty()) {
+    ++bootstrap_failures_;
+    last_bootstrap_failure_ = t.bootstrap_failure;
+  }
   skipped_cycles_ += t.mapping_skipped;
   reinitialisations_ += t.reinitialised;
   mapping_cycles_ += t.mapped ? 1 : 0;
@@ -191,6 +195,7 @@ void RunRecorder::AddMappingTick(TimeNs t_ns, const events::RepresentationTiming
 
 Status RunRecorder::AddMappingCycle(const pipeline::MappingCycle& cycle) {
   ++mapping_cycles_;
+  ++mapping_cycles_on_ground_truth_;
   bootstraps_ += cycle.bootstrap ? 1 : 0;
   if (!cycle.bootstrap) AddCycleReport(cycle.report);
   const bool confirmed = cycle.map && cycle.map->confirmed;
@@ -253,8 +258,8 @@ Expected<RunRecord> RunRecorder::Finish(bool interrupted, TimeNs end_ns,
   }
   if (scorer_ && scorer_->accumulator().Summary().frames > 0)
     record.depth = scorer_->accumulator().Summary();
-  if (ceiling_ && options_.mode == "mapping_only_gt_poses")
-    record.sample_ceiling = ceiling_->Summary();
+  // The ceiling is scored on the cycles of a run on ground-truth poses only.
+  if (ceiling_ && mapping_cycles_on_ground_truth_ > 0) record.sample_ceiling = ceiling_->Summary();
 
   const double evaluation_s = evaluation_ms_ / 1e3;
   const double processing_s = std::max(record.wall_s - evaluation_s, 0.0);
@@ -273,6 +278,9 @@ Expected<RunRecord> RunRecorder::Finish(bool interrupted, TimeNs end_ns,
   s["lost_reasons"] = lost_reasons_;
   s["bootstraps"] = bootstraps_;
   s["reinitialisations"] = reinitialisations_;
+  // Ticks on which a (re-)initialisation found too few points, and the last one's reason.
+  s["bootstrap_failures"] = {{"ticks", bootstrap_failures_},
+                             {"last_reason", last_bootstrap_failure_}};
   s["real_time_mode"] = config_.pipeline.real_time;
   s["mapping_cycles"] = mapping_cycles_;
   s["mapping_cycles_skipped"] = skipped_cycles_;

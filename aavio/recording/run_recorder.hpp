@@ -115,6 +115,9 @@ class RunRecorder {
   std::int64_t events_ = 0, ticks_ = 0;
   std::int64_t events_since_tick_ = 0;  ///< timings.csv's `events`
   int bootstraps_ = 0, reinitialisations_ = 0, skipped_cycles_ = 0, mapping_cycles_ = 0;
+  int mapping_cycles_on_ground_truth_ = 0;  ///< AddMappingCycle's
+  int bootstrap_failures_ = 0;
+  std::string last_bootstrap_failure_;
   int confirmed_maps_ = 0;
   std::size_t confirmed_points_ = 0;
   nlohmann::json rss_over_time_ = nlohmann::json::array();

@@ -99,6 +99,12 @@ void PrintOdometryRun(const recording::RunRecord& r, Context& ctx) {
       "poses %zu: tracking ok %d, lost %d, no map %d; %d bootstrap(s), %d re-initialisation(s)\n",
       s["poses"].get<std::size_t>(), count("ok"), count("lost"), count("no_map"),
       s["bootstraps"].get<int>(), s["reinitialisations"].get<int>());
+  if (const int failed = s["bootstrap_failures"]["ticks"].get<int>(); failed > 0) {
+    ctx.out << StrFormat(
+        "bootstrap: %d tick(s) found too few points and tried again on the next "
+        "(last: %s)\n",
+        failed, s["bootstrap_failures"]["last_reason"].get<std::string>().c_str());
+  }
   std::string stages = "median per stage [ms]:";
   for (const char* stage : {"time_surface", "ts_derived", "aa_map", "sampling", "tracking",
                             "matching", "depth_refinement", "fusion", "mapping_total"}) {
