@@ -7,6 +7,7 @@
 /// depth against the sequence's ground truth as the maps are made (no file is read back); and at
 /// Finish writes stamped_traj_estimate.txt, map.ply, config.yaml and summary.json.
 
+#include <chrono>
 #include <fstream>
 #include <map>
 #include <memory>
