@@ -1,5 +1,6 @@
 #include "aavio/io/ply.hpp"
 
+#include <cctype>
 #include <fstream>
 #include <sstream>
 
@@ -11,6 +12,14 @@ namespace {
 constexpr const char* kProperties[] = {"property float x",     "property float y",
                                        "property float z",     "property uchar red",
                                        "property uchar green", "property uchar blue"};
+
+// A header line for a message: at most 40 characters, anything unprintable as '?'.
+std::string Quoted(const std::string& line) {
+  std::string out = "\"";
+  for (std::size_t i = 0; i < line.size() && i < 40; ++i)
+    out += std::isprint(static_cast<unsigned char>(line[i])) ? line[i] : '?';
+  return out + (line.size() > 40 ? "...\"" : "\"");
+}
 
 }  // namespace
 
@@ -43,8 +52,8 @@ Expected<ColouredCloud> ReadPly(const std::string& path) {
   std::string line;
   if (!std::getline(in, line) || line != "ply") return ParseError(path + ": not a PLY file");
   if (!std::getline(in, line) || line != "format binary_little_endian 1.0") {
-    return ParseError(path + ": \"" + line +
-                      "\": only binary_little_endian 1.0 is read (the layout aavio writes)");
+    return ParseError(path + ": " + Quoted(line) +
+                      ": only binary_little_endian 1.0 is read (the layout aavio writes)");
   }
   ColouredCloud cloud;
   long long vertices = -1;
@@ -56,20 +65,32 @@ Expected<ColouredCloud> ReadPly(const std::string& path) {
     } else if (line.rfind("element vertex ", 0) == 0) {
       std::istringstream n(line.substr(15));
       if (!(n >> vertices) || vertices < 0)
-        return ParseError(path + ": \"" + line + "\": bad vertex count");
+        return ParseError(path + ": " + Quoted(line) + ": bad vertex count");
     } else if (line.rfind("property", 0) == 0) {
       if (property >= std::size(kProperties) || line != kProperties[property]) {
-        return ParseError(path + ": \"" + line +
-                          "\": expected float x y z and uchar red green blue, in that order");
+        return ParseError(path + ": " + Quoted(line) +
+                          ": expected float x y z and uchar red green blue, in that order");
       }
       ++property;
     } else {
-      return ParseError(path + ": \"" + line + "\": unexpected header line");
+      return ParseError(path + ": " + Quoted(line) + ": unexpected header line");
     }
   }
   if (line != "end_header") return ParseError(path + ": the header never ends (no end_header)");
   if (vertices < 0 || property != std::size(kProperties))
     return ParseError(path + ": the header lacks the vertex element or some of its properties");
+  // The header's count against what the file holds, before anything is allocated for it.
+  constexpr long long kVertexBytes = 3 * sizeof(float) + 3;
+  const std::streamoff body_start = in.tellg();
+  in.seekg(0, std::ios::end);
+  const long long body_bytes = static_cast<long long>(in.tellg() - body_start);
+  in.seekg(body_start);
+  if (vertices > body_bytes / kVertexBytes) {
+    return ParseError(
+        StrFormat("%s: the header declares %lld vertices but the file holds %lld "
+                  "(%lld bytes of %lld each); the file is cut short or its header is wrong",
+                  path.c_str(), vertices, body_bytes / kVertexBytes, body_bytes, kVertexBytes));
+  }
   cloud.points.resize(static_cast<std::size_t>(vertices));
   cloud.colours.resize(static_cast<std::size_t>(vertices));
   for (std::size_t i = 0; i < cloud.points.size(); ++i) {

@@ -256,8 +256,10 @@ Expected<RunRecord> RunRecorder::Finish(bool interrupted, TimeNs end_ns,
     if (!e) return e.status().WithContext(truth_->trajectory_path);
     record.accuracy = std::move(*e);
   }
-  if (scorer_ && scorer_->accumulator().Summary().frames > 0)
-    record.depth = scorer_->accumulator().Summary();
+  if (scorer_) {
+    eval::DepthErrorSummary depth = scorer_->accumulator().Summary();
+    if (depth.frames > 0) record.depth = std::move(depth);
+  }
   // The ceiling is scored on the cycles of a run on ground-truth poses only.
   if (ceiling_ && mapping_cycles_on_ground_truth_ > 0) record.sample_ceiling = ceiling_->Summary();
 

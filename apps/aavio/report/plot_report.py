@@ -203,7 +203,11 @@ def plot_map_from_above(runs, data_dir):
     shown = []
     for run in runs[:3]:
         ply = os.path.join(run["dir"], "map.ply")
-        cloud = read_ply(ply) if os.path.exists(ply) else None
+        try:
+            cloud = read_ply(ply) if os.path.exists(ply) else None
+        except (OSError, ValueError) as e:  # a damaged map.ply costs this figure, not the report
+            print("plot_report.py: %s: %s; the map is not drawn" % (ply, e), file=sys.stderr)
+            cloud = None
         if cloud is not None and len(cloud) > 0:
             shown.append((run, cloud))
     if not shown:
