@@ -43,7 +43,7 @@ struct ConfigValue {
   std::string scalar;             ///< the text of a scalar value
   std::vector<std::string> list;  ///< the items of a sequence value
   bool is_list = false;
-  std::string origin;  ///< where it came from, for messages: "configs/dsec.yaml:12", "--set"
+  std::string origin;  ///< where it came from, for messages: "configs/driving.yaml:12", "--set"
 };
 
 /// A dotted key ("mapping.static_stereo.zncc_threshold") with its value.

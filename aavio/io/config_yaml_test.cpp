@@ -80,7 +80,7 @@ TEST(ConfigYaml, WriteTextFileReportsUnwritablePaths) {
 
 TEST(Presets, EveryPresetAppliesAndValidates) {
   const std::vector<std::string> names = PresetNames();
-  EXPECT_EQ(names, (std::vector<std::string>{"dsec", "rpg"}));
+  EXPECT_EQ(names, (std::vector<std::string>{"driving", "indoor"}));
   for (const std::string& name : names) {
     Expected<std::vector<ConfigEntry>> entries = PresetEntries(name);
     ASSERT_TRUE(entries.ok()) << entries.status().message();
@@ -90,19 +90,17 @@ TEST(Presets, EveryPresetAppliesAndValidates) {
   }
 }
 
-TEST(Presets, CarryTheirDatasetsValues) {
-  pipeline::OdometryConfig rpg, dsec;
-  ASSERT_TRUE(ApplyConfigEntries(*PresetEntries("rpg"), &rpg).ok());
-  ASSERT_TRUE(ApplyConfigEntries(*PresetEntries("dsec"), &dsec).ok());
-  EXPECT_DOUBLE_EQ(rpg.mapping.inv_depth_min, 0.2);  // 0.5–5 m indoors
-  EXPECT_DOUBLE_EQ(rpg.mapping.inv_depth_max, 2.0);
-  EXPECT_FALSE(rpg.mapping.static_stereo.smooth_time_surface);           // ESVO rpg
-  EXPECT_DOUBLE_EQ(dsec.mapping.inv_depth_max, 0.25);                    // from 4 m
-  EXPECT_EQ(dsec.edge_sampling.num_points, 2500);                        // the paper's ~2.5k
-  EXPECT_DOUBLE_EQ(dsec.adaptive_accumulation.contrast_threshold, 0.5);  // β
-  EXPECT_DOUBLE_EQ(dsec.mapping.eta, 0.2);                               // η
+TEST(Presets, CarryTheirScenesValues) {
+  pipeline::OdometryConfig indoor, driving;
+  ASSERT_TRUE(ApplyConfigEntries(*PresetEntries("indoor"), &indoor).ok());
+  ASSERT_TRUE(ApplyConfigEntries(*PresetEntries("driving"), &driving).ok());
+  EXPECT_DOUBLE_EQ(indoor.mapping.inv_depth_min, 0.2);  // 0.5–5 m indoors
+  EXPECT_DOUBLE_EQ(indoor.mapping.inv_depth_max, 2.0);
+  EXPECT_EQ(indoor.mapping.fusion.strategy, mapping::FusionStrategy::kConstPoints);  // ESVO rpg
+  EXPECT_DOUBLE_EQ(driving.mapping.inv_depth_max, 0.25);                             // from 4 m
+  EXPECT_EQ(driving.mapping.fusion.strategy, mapping::FusionStrategy::kConstFrames);
   EXPECT_EQ(PresetEntries("kitti").status().message(),
-            "no preset named 'kitti'; presets: dsec, rpg");
+            "no preset named 'kitti'; presets: driving, indoor");
 }
 
 }  // namespace

@@ -22,7 +22,14 @@ Expected<std::vector<ConfigEntry>> Entries(const std::string& name, bool overlay
   std::string known;
   for (const std::string& n : Names(overlay))
     known += (known.empty() ? "" : ", ") + n;
-  return NotFound("no " + std::string(kind) + " named '" + name + "'; " + kind + "s: " + known);
+  std::string hint;
+  if (!overlay && (name == "rpg" || name == "dsec")) {
+    hint =
+        " (presets are scene kinds now: rpg became indoor, dsec driving; the camera's "
+        "settings come from its calibration)";
+  }
+  return NotFound("no " + std::string(kind) + " named '" + name + "'; " + kind + "s: " + known +
+                  hint);
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 #pragma once
 /// Configuration of mapping (algorithm.md §4, §10.2). Defaults are the paper's / ICRA code's
-/// DSEC values; configs/rpg.yaml and configs/dsec.yaml are the per-dataset presets.
+/// DSEC values; configs/indoor.yaml and configs/driving.yaml are the scene presets, and
+/// pipeline/sensor_settings.hpp derives the camera-dependent ones.
 
 #include <array>
 #include <utility>

@@ -51,7 +51,7 @@ MappingRun RunMini(const OdometryConfig& config, double poses_from_s = 0.0) {
 }
 
 TEST(MappingFrontEnd, BootstrapsAtTheFirstCycleThenMapsEveryCycle) {
-  const OdometryConfig config = aavio::testing::PresetConfig("rpg");
+  const OdometryConfig config = aavio::testing::PresetConfig("indoor", Mini().rig);
   const MappingRun run = RunMini(config);
   ASSERT_FALSE(run.cycles.empty());
   const double cycles_per_s = config.mapping.rate_hz;
@@ -82,7 +82,7 @@ TEST(MappingFrontEnd, BootstrapsAtTheFirstCycleThenMapsEveryCycle) {
 }
 
 TEST(MappingFrontEnd, MapsNothingWhereNoPoseIsKnownAndBootstrapsOnceOneIs) {
-  const OdometryConfig config = aavio::testing::PresetConfig("rpg");
+  const OdometryConfig config = aavio::testing::PresetConfig("indoor", Mini().rig);
   const MappingRun run = RunMini(config, /*poses_from_s=*/0.5);
   ASSERT_FALSE(run.cycles.empty());
   const TimeNs poses_from = Mini().start_ns + SecondsToNs(0.5);
@@ -94,7 +94,7 @@ TEST(MappingFrontEnd, MapsNothingWhereNoPoseIsKnownAndBootstrapsOnceOneIs) {
 }
 
 TEST(MappingFrontEnd, TheSameMapsBitForBitAtOneAndTwoThreads) {
-  const OdometryConfig config = aavio::testing::PresetConfig("rpg");
+  const OdometryConfig config = aavio::testing::PresetConfig("indoor", Mini().rig);
   MappingRun one, two;
   {
     tbb::global_control workers(tbb::global_control::max_allowed_parallelism, 1);

@@ -5,6 +5,7 @@
 #include <set>
 
 #include "aavio/io/presets.hpp"
+#include "aavio/pipeline/sensor_settings.hpp"
 
 namespace aavio::pipeline {
 namespace {
@@ -54,11 +55,18 @@ TEST(OdometryConfig, TheEsvoOverlayTurnsOffEveryAavioAddition) {
   OdometryConfig defaults;
   const auto default_index = BuildFieldIndex(defaults);
   int additions = 0;
-  for (const char* preset : {"rpg", "dsec"}) {
+  // Each preset on its kind of sensor (the sensor's settings include aavio additions too).
+  const std::vector<std::pair<const char*, SensorFacts>> cases = {
+      {"indoor", {240, 180, 157.0, 0.148}}, {"driving", {640, 480, 536.0, 0.6}}};
+  for (const auto& [preset, sensor] : cases) {
     SCOPED_TRACE(preset);
     OdometryConfig config;
     Expected<std::vector<ConfigEntry>> entries = io::PresetEntries(preset);
     ASSERT_TRUE(entries.ok());
+    OdometryConfig scene;
+    ASSERT_TRUE(ApplyConfigEntries(*entries, &scene).ok());
+    ASSERT_TRUE(
+        ApplyConfigEntries(ToConfigEntries(DeriveSensorSettings(sensor, scene)), &config).ok());
     ASSERT_TRUE(ApplyConfigEntries(*entries, &config).ok());
     ASSERT_TRUE(ApplyConfigEntries(*overlay, &config).ok());
     const auto index = BuildFieldIndex(config);

@@ -25,7 +25,7 @@ const aavio::testing::SimulatedSequence& Mini() {
 }
 
 OdometryConfig RpgPreset() {
-  OdometryConfig config = aavio::testing::PresetConfig("rpg");
+  OdometryConfig config = aavio::testing::PresetConfig("indoor", Mini().rig);
   // 160×120 px constrains translation weakly; the rpg preset's gate is for 240×180 (cli_test).
   config.tracking.max_correction_m = 0.3;
   return config;
@@ -101,8 +101,7 @@ TEST(Odometry, SaysWhyTheBootstrapFailsAndRetriesEveryTick) {
   for (const OdometryTick& t : ticks) {
     EXPECT_FALSE(t.bootstrap);
     EXPECT_EQ(t.status, tracking::TrackingStatus::kNoMap);
-    EXPECT_NE(t.bootstrap_failure.find("mapping.bootstrap.min_points = 1000000"),
-              std::string::npos)
+    EXPECT_NE(t.bootstrap_failure.find("mapping.bootstrap.min_points = 1000000"), std::string::npos)
         << t.bootstrap_failure;
   }
   // With enough points the same ticks report no failure once the map stands.

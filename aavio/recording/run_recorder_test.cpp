@@ -27,12 +27,12 @@ const Mini& MiniSequence() {
 }
 
 pipeline::OdometryConfig Config() {
-  pipeline::OdometryConfig config = aavio::testing::PresetConfig("rpg");
+  pipeline::OdometryConfig config = aavio::testing::PresetConfig("indoor", MiniSequence().rig);
   config.tracking.max_correction_m = 0.3;  // 160×120 px (odometry_test)
   return config;
 }
 
-// A FIFO of 5 cycles confirms a map every cycle once full: many maps in 1.5 s (rpg's
+// A FIFO of 5 cycles confirms a map every cycle once full: many maps in 1.5 s (the indoor preset's
 // const_points FIFO is not full again after the bootstrap on this small sensor).
 pipeline::OdometryConfig ConfigConfirmingEveryCycle() {
   pipeline::OdometryConfig config = Config();

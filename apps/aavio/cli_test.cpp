@@ -138,17 +138,17 @@ TEST(Cli, ConvertRoundTripsThroughEveryFormat) {
 }
 
 TEST(Cli, ConfigPrintsListsAndWritesTheEffectiveConfig) {
-  Result r = RunAavio({"config", "--preset", "rpg", "--set", "mapping.eta=0.15"});
+  Result r = RunAavio({"config", "--preset", "indoor", "--set", "mapping.eta=0.15"});
   ASSERT_EQ(r.code, kExitOk) << r.err;
-  EXPECT_NE(r.out.find("from: preset rpg + --set mapping.eta=0.15"), std::string::npos);
+  EXPECT_NE(r.out.find("from: preset indoor + --set mapping.eta=0.15"), std::string::npos);
   EXPECT_NE(r.out.find("  eta: 0.15\n"), std::string::npos);
   EXPECT_NE(r.out.find("  inv_depth_max: 2.0\n"), std::string::npos);
 
   const auto dir = testing::ScratchDir();
   const std::string written = (dir / "config.yaml").string();
-  ASSERT_EQ(RunAavio({"config", "--preset", "dsec", "--out", written}).code, kExitOk);
+  ASSERT_EQ(RunAavio({"config", "--preset", "driving", "--out", written}).code, kExitOk);
   // The written file is a complete config: loading it alone reproduces the same output.
-  Result a = RunAavio({"config", "--preset", "dsec"});
+  Result a = RunAavio({"config", "--preset", "driving"});
   Result b = RunAavio({"config", "--config", written});
   auto body = [](const std::string& s) { return s.substr(s.find("\n", s.find("from:")) + 1); };
   EXPECT_EQ(body(a.out), body(b.out));
@@ -163,29 +163,29 @@ TEST(Cli, ConfigPrintsListsAndWritesTheEffectiveConfig) {
   EXPECT_NE(r.out.find("number, must be >= 0\n    η: |g_u| / |g_v|"), std::string::npos);
 }
 
-// Every overlay under configs/overlays loads on top of the DSEC preset and sets what it says.
+// Every overlay under configs/overlays loads on top of the driving preset and sets what it says.
 TEST(Cli, OverlaysApplyOnTopOfThePreset) {
   const std::filesystem::path overlays =
       std::filesystem::path(AAVIO_SOURCE_DIR) / "configs/overlays";
   int count = 0;
   for (const auto& entry : std::filesystem::directory_iterator(overlays)) {
     SCOPED_TRACE(entry.path().string());
-    const Result r = RunAavio({"config", "--preset", "dsec", "--config", entry.path().string()});
+    const Result r = RunAavio({"config", "--preset", "driving", "--config", entry.path().string()});
     EXPECT_EQ(r.code, kExitOk) << r.err;
     ++count;
   }
   EXPECT_GE(count, 1);
   const Result r =
-      RunAavio({"config", "--preset", "dsec", "--config", (overlays / "esvo.yaml").string()});
+      RunAavio({"config", "--preset", "driving", "--config", (overlays / "esvo.yaml").string()});
   EXPECT_NE(r.out.find("  mode: newest_events\n"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("    enabled: false\n"), std::string::npos);
   EXPECT_NE(r.out.find("  eta: 0.2\n"), std::string::npos);  // the preset's, untouched
   // By name: the overlay embedded in the binary, the same configuration.
-  const Result by_name = RunAavio({"config", "--preset", "dsec", "--config", "esvo"});
+  const Result by_name = RunAavio({"config", "--preset", "driving", "--config", "esvo"});
   EXPECT_EQ(by_name.code, kExitOk) << by_name.err;
   auto body = [](const std::string& out) { return out.substr(out.find("\n\npipeline:")); };
   EXPECT_EQ(body(by_name.out), body(r.out));
-  EXPECT_NE(by_name.out.find("# from: preset dsec + esvo\n"), std::string::npos);
+  EXPECT_NE(by_name.out.find("# from: preset driving + esvo\n"), std::string::npos);
   const Result unknown = RunAavio({"config", "--config", "esvo2"});
   EXPECT_EQ(unknown.code, kExitError);
   EXPECT_NE(unknown.err.find("esvo2"), std::string::npos) << unknown.err;
@@ -211,12 +211,45 @@ TEST(Cli, ConfigErrorsAreClear) {
 namespace aavio::cli {
 namespace {
 
+// `config --for`: the sensor's settings of a sequence's rig, each with its rule, the preset the
+// rig suggests and why, and which settings a later source changes.
+TEST(Cli, ConfigForASequenceDerivesTheSensorsSettings) {
+  const auto dir = testing::ScratchDir();
+  const std::string seq = (dir / "seq").string();
+  Result r =
+      RunAavio({"simulate", "--preset", "mini", "--duration", "0.2", "--out", seq, "--quiet"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  r = RunAavio({"config", "--for", seq, "--set", "edge_sampling.num_points=2400"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  EXPECT_NE(r.out.find("# sensor: 160 x 120 px, f "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("# preset: indoor (baseline 0.15 m < 0.3 m"), std::string::npos) << r.out;
+  // 160×120: the paper's 8 blocks across, square ones down; 4 × 3 sampling blocks at least.
+  EXPECT_NE(r.out.find("#   adaptive_accumulation.grid_rows"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("  grid_rows: 6\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("[a later source sets 2400]"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("  num_points: 2400\n"), std::string::npos) << r.out;
+  // A named preset is kept; the calibration alone is enough.
+  r = RunAavio({"config", "--for", (std::filesystem::path(seq) / "calibration").string(),
+                "--preset", "driving"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  EXPECT_NE(r.out.find("# preset: driving (named)"), std::string::npos) << r.out;
+  r = RunAavio({"config", "--for", (dir / "nothing").string()});
+  EXPECT_EQ(r.code, kExitError);
+  EXPECT_NE(r.err.find("--for " + (dir / "nothing").string() + ": neither a calibration"),
+            std::string::npos)
+      << r.err;
+  // The former dataset names say what they became.
+  r = RunAavio({"config", "--preset", "rpg"});
+  EXPECT_EQ(r.code, kExitError);
+  EXPECT_NE(r.err.find("rpg became indoor"), std::string::npos) << r.err;
+}
+
 TEST(Cli, RepresentationsOfASimulatedTick) {
   const auto dir = testing::ScratchDir();
   const std::string seq = (dir / "seq").string(), out = (dir / "rep").string();
   Result r = RunAavio({"simulate", "--preset", "mini", "--duration", "1", "--out", seq, "--quiet"});
   ASSERT_EQ(r.code, kExitOk) << r.err;
-  r = RunAavio({"representations", seq, "--at", "0.5", "--out", out, "--preset", "rpg", "--set",
+  r = RunAavio({"representations", seq, "--at", "0.5", "--out", out, "--preset", "indoor", "--set",
                 "edge_sampling.num_points=300", "--set", "mapping.max_points=300"});
   ASSERT_EQ(r.code, kExitOk) << r.err;
   EXPECT_NE(r.out.find("samples: 300 from AA (budget 300)"), std::string::npos) << r.out;
@@ -247,7 +280,7 @@ TEST(Cli, RunMapsWithGroundTruthPosesAndScoresDepth) {
   Result r = RunAavio({"simulate", "--preset", "mini", "--duration", "1.5", "--out", seq,
                        "--sensor", "ideal", "--quiet"});
   ASSERT_EQ(r.code, kExitOk) << r.err;
-  r = RunAavio({"run", seq, "--gt-poses", "--out", out, "--preset", "rpg", "--quiet", "--set",
+  r = RunAavio({"run", seq, "--gt-poses", "--out", out, "--preset", "indoor", "--quiet", "--set",
                 "mapping.bootstrap.min_points=100"});
   ASSERT_EQ(r.code, kExitOk) << r.err;
   EXPECT_NE(r.out.find("depth ("), std::string::npos) << r.out;
@@ -277,17 +310,19 @@ TEST(Cli, RunMapsWithGroundTruthPosesAndScoresDepth) {
   EXPECT_GT(e["depth"]["frames"].get<int>(), 0);
   EXPECT_EQ(e["depth"]["frames"].get<int>(), j["depth_maps_written"].get<int>());
   EXPECT_LT(e["depth"]["relative_median"].get<double>(), 0.1);
-  // Without --preset, mapping alone takes the preset of the camera's resolution, as the odometry
-  // does (it ran on the defaults before).
+  // Without --preset, mapping alone takes the sensor's settings and the preset the rig suggests,
+  // as the odometry does.
   const std::string auto_out = (dir / "run_auto").string();
   r = RunAavio(
       {"run", seq, "--gt-poses", "--out", auto_out, "--set", "mapping.bootstrap.min_points=100"});
   ASSERT_EQ(r.code, kExitOk) << r.err;
-  EXPECT_NE(r.err.find("no --preset given; using 'rpg'"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("no --preset given; using 'indoor' (baseline 0.15 m"), std::string::npos)
+      << r.err;
   std::ifstream config(std::filesystem::path(auto_out) / "config.yaml");
   std::ostringstream config_text;
   config_text << config.rdbuf();
-  EXPECT_NE(config_text.str().find("from: preset rpg + --set"), std::string::npos)
+  EXPECT_NE(config_text.str().find("from: the sensor's settings + preset indoor + --set"),
+            std::string::npos)
       << config_text.str();
   // A sequence without ground truth: the error names what is missing.
   testing::WriteFile(dir / "seq" / "no_gt.yaml",
@@ -310,9 +345,9 @@ TEST(Cli, RunTracksAgainstGroundTruthMaps) {
   Result r =
       RunAavio({"simulate", "--preset", "mini", "--duration", "1.0", "--out", seq, "--quiet"});
   ASSERT_EQ(r.code, kExitOk) << r.err;
-  // 160×120 px constrains translation weakly: the rpg preset's 5 cm divergence gate (for
+  // 160×120 px constrains translation weakly: the indoor preset's 5 cm divergence gate (for
   // 240×180) would count half of these ticks as lost; this test is about the mode.
-  r = RunAavio({"run", seq, "--gt-map", "--out", out, "--preset", "rpg", "--quiet", "--set",
+  r = RunAavio({"run", seq, "--gt-map", "--out", out, "--preset", "indoor", "--quiet", "--set",
                 "tracking.max_correction_m=0.3"});
   ASSERT_EQ(r.code, kExitOk) << r.err;
   EXPECT_NE(r.out.find("RPE over 100 ms"), std::string::npos) << r.out;
@@ -436,9 +471,8 @@ TEST(Cli, RunOdometryWritesItsOutputsAndIsDeterministic) {
   // timings.csv counts each tick's events (the strips' event rate).
   EXPECT_NE(ReadAll(std::filesystem::path(one) / "timings.csv").find(",lost_reason,events\n"),
             std::string::npos);
-  for (const char* png :
-       {"trajectory.png", "errors_over_distance.png", "depth_error.png", "timing.png",
-        "depth_maps.png", "map_from_above.png", "strips.png"}) {
+  for (const char* png : {"trajectory.png", "errors_over_distance.png", "depth_error.png",
+                          "timing.png", "depth_maps.png", "map_from_above.png", "strips.png"}) {
     const auto path = dir / "report" / "report_files" / png;
     ASSERT_TRUE(std::filesystem::exists(path)) << png;
     EXPECT_GT(std::filesystem::file_size(path), 5000u) << png;

@@ -4,7 +4,10 @@
 #include <iomanip>
 #include <ostream>
 
+#include "aavio/common/format.hpp"
+#include "aavio/io/calibration.hpp"
 #include "aavio/io/config_yaml.hpp"
+#include "aavio/io/sequence.hpp"
 #include "cli.hpp"
 #include "config_resolution.hpp"
 
@@ -14,6 +17,7 @@ namespace {
 
 struct ConfigOptions {
   ConfigSources sources;
+  std::string for_path;
   std::string out_path;
   bool list = false;
 };
@@ -48,7 +52,56 @@ std::string RuleOf(const pipeline::OdometryConfig& config, const std::string& ke
   return text;
 }
 
-int RunConfig(const ConfigOptions& options, Context& ctx) {
+// The calibration at `path`, or the one the sequence at `path` names.
+Expected<io::LoadedCalibration> CalibrationOf(const std::string& path) {
+  Expected<io::LoadedCalibration> calibration = io::LoadCalibration(path);
+  if (calibration) return calibration;
+  Expected<io::SequenceDescription> sequence = io::DescribeSequence(path, "");
+  if (!sequence) {
+    return InvalidArgument("--for " + path + ": neither a calibration (" +
+                           calibration.status().message() + ") nor a sequence (" +
+                           sequence.status().message() + ")");
+  }
+  if (sequence->calibration.empty())
+    return InvalidArgument("--for " + path + ": the sequence names no calibration");
+  return io::LoadCalibration(sequence->calibration);
+}
+
+// The header of a configuration made for a rig: the sensor, the preset and every derived value
+// with its rule (a later source that changes one is named).
+Expected<std::string> RigHeader(const ConfigSources& sources, const std::string& preset_reason,
+                                const pipeline::OdometryConfig& config) {
+  Expected<std::vector<pipeline::SensorSetting>> derived = SensorSettingsOf(sources);
+  if (!derived) return derived.status();
+  std::string text = "sensor: " + sources.sensor->Describe() + "\n";
+  text += "preset: " + sources.preset +
+          (preset_reason.empty() ? " (named)" : " (" + preset_reason + ")") + "\n";
+  text += "derived from the sensor:\n";
+  pipeline::OdometryConfig copy = config;
+  auto index = BuildFieldIndex(copy);
+  for (const pipeline::SensorSetting& s : *derived) {
+    const std::string now = index.fields[s.key].get().scalar;
+    double a = 0.0, b = 0.0;
+    const bool kept = now == s.value || (config_detail::ParseDouble(now, &a).ok() &&
+                                         config_detail::ParseDouble(s.value, &b).ok() && a == b);
+    text += StrFormat("  %-44s %-6s %s%s\n", s.key.c_str(), s.value.c_str(), s.rule.c_str(),
+                      kept ? "" : (" [a later source sets " + now + "]").c_str());
+  }
+  return text;
+}
+
+int RunConfig(ConfigOptions options, Context& ctx) {
+  std::string preset_reason;
+  if (!options.for_path.empty()) {
+    Expected<io::LoadedCalibration> calibration = CalibrationOf(options.for_path);
+    if (!calibration) {
+      ctx.err << "aavio config: error: " << calibration.status().message() << "\n";
+      return kExitError;
+    }
+    for (const std::string& warning : calibration->warnings)
+      ctx.err << "warning: " << warning << "\n";
+    preset_reason = ConfigureForRig(calibration->rig, &options.sources);
+  }
   Expected<pipeline::OdometryConfig> config = ResolveOdometryConfig(options.sources);
   if (!config) {
     ctx.err << "aavio config: error: " << config.status().message() << "\n";
@@ -73,9 +126,17 @@ int RunConfig(const ConfigOptions& options, Context& ctx) {
     }
     return kExitOk;
   }
-  const std::string yaml = io::FormatConfigYaml(
-      FlattenConfig(*config), "aavio effective configuration (" + VersionString() +
-                                  ")\nfrom: " + DescribeSources(options.sources));
+  std::string header = "aavio effective configuration (" + VersionString() +
+                       ")\nfrom: " + DescribeSources(options.sources);
+  if (options.sources.sensor) {
+    Expected<std::string> rig_header = RigHeader(options.sources, preset_reason, *config);
+    if (!rig_header) {
+      ctx.err << "aavio config: error: " << rig_header.status().message() << "\n";
+      return kExitError;
+    }
+    header += "\nfor: " + options.for_path + "\n" + *rig_header;
+  }
+  const std::string yaml = io::FormatConfigYaml(FlattenConfig(*config), header);
   if (options.out_path.empty()) {
     ctx.out << yaml;
     return kExitOk;
@@ -94,8 +155,13 @@ int RunConfig(const ConfigOptions& options, Context& ctx) {
 void RegisterConfig(CLI::App& app, Context& ctx) {
   auto options = std::make_shared<ConfigOptions>();
   CLI::App* sub = app.add_subcommand(
-      "config", "Print the effective parameters (defaults, preset, files, overrides)");
+      "config",
+      "Print the effective parameters (defaults, the sensor's, preset, files, overrides)");
   AddConfigOptions(*sub, &options->sources);
+  sub->add_option("--for", options->for_path,
+                  "A sequence or calibration: derive the sensor's settings from its rig, pick "
+                  "the preset it suggests unless --preset names one, and say why")
+      ->type_name("PATH");
   sub->add_option("--out", options->out_path, "Write the YAML here instead of printing it");
   sub->add_flag("--list", options->list,
                 "List every key with its value, type, range and a description");

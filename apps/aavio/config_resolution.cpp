@@ -25,12 +25,14 @@ void AddConfigOptions(CLI::App& sub, ConfigSources* sources) {
       ->type_name("KEY=VALUE");
 }
 
-Expected<pipeline::OdometryConfig> ResolveOdometryConfig(const ConfigSources& sources) {
-  pipeline::OdometryConfig config;
+namespace {
+
+// Applies the preset, the files, the overlays and the --set overrides onto `config`.
+Status ApplySources(const ConfigSources& sources, pipeline::OdometryConfig* config) {
   if (!sources.preset.empty()) {
     Expected<std::vector<ConfigEntry>> entries = io::PresetEntries(sources.preset);
     if (!entries) return entries.status();
-    AAVIO_RETURN_IF_ERROR(ApplyConfigEntries(*entries, &config));
+    AAVIO_RETURN_IF_ERROR(ApplyConfigEntries(*entries, config));
   }
   const std::vector<std::string> overlays = io::OverlayNames();
   for (const std::string& file : sources.files) {
@@ -40,12 +42,12 @@ Expected<pipeline::OdometryConfig> ResolveOdometryConfig(const ConfigSources& so
     Expected<std::vector<ConfigEntry>> entries =
         overlay ? io::OverlayEntries(file) : io::ReadConfigYaml(file);
     if (!entries) return entries.status();
-    AAVIO_RETURN_IF_ERROR(ApplyConfigEntries(*entries, &config));
+    AAVIO_RETURN_IF_ERROR(ApplyConfigEntries(*entries, config));
   }
   for (const std::string& name : sources.overlays) {
     Expected<std::vector<ConfigEntry>> entries = io::OverlayEntries(name);
     if (!entries) return entries.status();
-    AAVIO_RETURN_IF_ERROR(ApplyConfigEntries(*entries, &config));
+    AAVIO_RETURN_IF_ERROR(ApplyConfigEntries(*entries, config));
   }
   std::vector<ConfigEntry> overrides;
   for (const std::string& text : sources.overrides) {
@@ -53,7 +55,33 @@ Expected<pipeline::OdometryConfig> ResolveOdometryConfig(const ConfigSources& so
     if (!entry) return entry.status();
     overrides.push_back(*entry);
   }
-  AAVIO_RETURN_IF_ERROR(ApplyConfigEntries(overrides, &config));
+  return ApplyConfigEntries(overrides, config);
+}
+
+}  // namespace
+
+std::string ConfigureForRig(const geometry::StereoRig& rig, ConfigSources* sources) {
+  sources->sensor = pipeline::SensorFacts::Of(rig);
+  if (!sources->preset.empty()) return "";
+  const pipeline::PresetSuggestion suggestion = pipeline::SuggestPreset(*sources->sensor);
+  sources->preset = suggestion.name;
+  return suggestion.reason;
+}
+
+Expected<std::vector<pipeline::SensorSetting>> SensorSettingsOf(const ConfigSources& sources) {
+  if (!sources.sensor) return std::vector<pipeline::SensorSetting>{};
+  // The scene the later sources make (its depth range): defaults + sources, without the sensor.
+  pipeline::OdometryConfig scene;
+  AAVIO_RETURN_IF_ERROR(ApplySources(sources, &scene));
+  return pipeline::DeriveSensorSettings(*sources.sensor, scene);
+}
+
+Expected<pipeline::OdometryConfig> ResolveOdometryConfig(const ConfigSources& sources) {
+  Expected<std::vector<pipeline::SensorSetting>> derived = SensorSettingsOf(sources);
+  if (!derived) return derived.status();
+  pipeline::OdometryConfig config;
+  AAVIO_RETURN_IF_ERROR(ApplyConfigEntries(pipeline::ToConfigEntries(*derived), &config));
+  AAVIO_RETURN_IF_ERROR(ApplySources(sources, &config));
   Status status = config.Validate();
   if (!status.ok()) return InvalidArgument("invalid configuration: " + status.message());
   return config;
@@ -61,6 +89,7 @@ Expected<pipeline::OdometryConfig> ResolveOdometryConfig(const ConfigSources& so
 
 std::string DescribeSources(const ConfigSources& sources) {
   std::string text = sources.preset.empty() ? "defaults" : "preset " + sources.preset;
+  if (sources.sensor) text = "the sensor's settings + " + text;
   for (const std::string& file : sources.files)
     text += " + " + file;
   for (const std::string& name : sources.overlays)

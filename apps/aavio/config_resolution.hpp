@@ -1,13 +1,16 @@
 #pragma once
 /// Builds the effective OdometryConfig from its sources, in this order (later wins):
-/// defaults → --preset NAME → --config FILE (each, in order; a shipped overlay's name unless a
+/// defaults → the sensor's settings (when a sequence's rig is known; pipeline/sensor_settings.hpp)
+/// → --preset NAME → --config FILE (each, in order; a shipped overlay's name unless a
 /// file of that name exists) → overlays a command adds (`run --esvo`) → --set key=value.
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "aavio/common/status.hpp"
 #include "aavio/pipeline/odometry_config.hpp"
+#include "aavio/pipeline/sensor_settings.hpp"
 
 namespace CLI {
 class App;
@@ -20,15 +23,25 @@ struct ConfigSources {
   std::vector<std::string> files;
   std::vector<std::string> overlays;  ///< shipped overlays by name, always the embedded ones
   std::vector<std::string> overrides;
+  std::optional<pipeline::SensorFacts> sensor;  ///< the rig the configuration is for, if known
 };
+
+/// Makes `sources` configure for `rig`: its sensor's settings and, when no preset is named, the
+/// preset the rig suggests. Returns why that preset ("" when one was named).
+std::string ConfigureForRig(const geometry::StereoRig& rig, ConfigSources* sources);
 
 /// Adds --preset, --config and --set to a subcommand.
 void AddConfigOptions(CLI::App& sub, ConfigSources* sources);
 
+/// The settings derived from `sources.sensor` (none without one), for the scene the other
+/// sources make.
+Expected<std::vector<pipeline::SensorSetting>> SensorSettingsOf(const ConfigSources& sources);
+
 /// Applies the sources and validates the result.
 Expected<pipeline::OdometryConfig> ResolveOdometryConfig(const ConfigSources& sources);
 
-/// A description of the sources for the header of a written config ("preset dsec + my.yaml").
+/// A description of the sources for the header of a written config ("preset driving + my.yaml",
+/// after the sensor's settings when there are any).
 std::string DescribeSources(const ConfigSources& sources);
 
 }  // namespace aavio::cli

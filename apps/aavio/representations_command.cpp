@@ -24,11 +24,12 @@ struct RepresentationsOptions {
   ConfigSources config;
 };
 
-Status Run(const RepresentationsOptions& options, Context& ctx) {
-  Expected<pipeline::OdometryConfig> config = ResolveOdometryConfig(options.config);
-  if (!config) return config.status();
+Status Run(RepresentationsOptions options, Context& ctx) {
   Expected<OpenedSequence> opened = OpenSequence(options.sequence, options.calibration);
   if (!opened) return opened.status();
+  ConfigureForRig(opened->calibration.rig, &options.config);
+  Expected<pipeline::OdometryConfig> config = ResolveOdometryConfig(options.config);
+  if (!config) return config.status();
   const geometry::StereoRig& rig = opened->calibration.rig;
   io::SequenceReader* reader = opened->reader.get();
   const TimeNs start = reader->start_ns(), end = reader->end_ns();

@@ -50,14 +50,17 @@ extern "C" void OnInterrupt(int) {
   g_interrupted.store(true);
 }
 
-// No preset named: the one for this camera's resolution (every mode of `aavio run`).
-void ChoosePreset(const OpenedSequence& opened, RunOptions* options, Context& ctx) {
-  if (!options->config.preset.empty()) return;
-  options->config.preset = opened.calibration.rig.width() <= 400 ? "rpg" : "dsec";
+// The configuration is for this sequence's rig: its sensor's settings, and the preset it
+// suggests when none is named (every mode of `aavio run`).
+void ConfigureForSequence(const OpenedSequence& opened, RunOptions* options, Context& ctx) {
   if (!options->quiet) {
-    ctx.err << "aavio run: no --preset given; using '" << options->config.preset << "' for "
-            << opened.calibration.rig.width() << "x" << opened.calibration.rig.height()
-            << " cameras\n";
+    for (const std::string& warning : opened.calibration.warnings)
+      ctx.err << "warning: " << warning << "\n";
+  }
+  const std::string why = ConfigureForRig(opened.calibration.rig, &options->config);
+  if (!why.empty() && !options->quiet) {
+    ctx.err << "aavio run: no --preset given; using '" << options->config.preset << "' (" << why
+            << ")\n";
   }
 }
 
@@ -211,7 +214,7 @@ Expected<Fed> FeedPackets(io::SequenceReader* reader, TimeNs begin, TimeNs end,
 Status Run(RunOptions options, Context& ctx) {
   Expected<OpenedSequence> opened = OpenSequence(options.sequence, options.calibration);
   if (!opened) return opened.status();
-  ChoosePreset(*opened, &options, ctx);
+  ConfigureForSequence(*opened, &options, ctx);
   // The ESVO-like mode is the shipped overlay configs/overlays/esvo.yaml (the embedded one, even
   // if a file named "esvo" is here), after the user's files; --set still applies.
   if (options.esvo) options.config.overlays.push_back("esvo");

@@ -1,0 +1,100 @@
+#include "aavio/pipeline/sensor_settings.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "aavio/common/format.hpp"
+
+namespace aavio::pipeline {
+
+namespace {
+
+// Below it a sensor is "small" (DAVIS240C: 43 kpx, DAVIS346: 90 kpx), above "large" (VGA:
+// 307 kpx, 1280×720: 922 kpx). The reference configurations differ in the same way between
+// rpg and DSEC.
+constexpr long kSmallSensorPixels = 100000;
+// The σ of a depth, in pixels of disparity at the middle of the depth range, beyond which
+// refinement culls it: 0.51 px is both rpg's 3.5 % and DSEC's 10 %.
+constexpr double kMaxDisparityStddevPx = 0.51;
+// Baselines from here up are cars' (DSEC 0.6 m, KITTI 0.54 m); hand-held, drone and robot rigs
+// are 0.1–0.2 m (rpg 0.15, MVSEC 0.10, TUM-VIE 0.12, VECtor 0.17).
+constexpr double kDrivingBaselineM = 0.3;
+
+std::string Int(long v) {
+  return std::to_string(v);
+}
+
+}  // namespace
+
+SensorFacts SensorFacts::Of(const geometry::StereoRig& rig) {
+  return {rig.width(), rig.height(), rig.focal_px(), rig.baseline_m()};
+}
+
+std::string SensorFacts::Describe() const {
+  return StrFormat("%d x %d px, f %.1f px, baseline %.4f m (f*b %.1f px*m)", width_px, height_px,
+                   focal_px, baseline_m, focal_px * baseline_m);
+}
+
+std::vector<SensorSetting> DeriveSensorSettings(const SensorFacts& sensor,
+                                                const OdometryConfig& scene) {
+  const int w = sensor.width_px, h = sensor.height_px;
+  const bool small = static_cast<long>(w) * h < kSmallSensorPixels;
+  const std::string size = small ? "under 0.1 Mpx" : "0.1 Mpx or more";
+  std::vector<SensorSetting> s;
+
+  const long aa_rows = std::max(1L, std::lround(8.0 * h / w));
+  s.push_back({"adaptive_accumulation.grid_cols", "8",
+               "the paper's 8 blocks across (30 px at 240 px, 80 px at 640 px)"});
+  s.push_back({"adaptive_accumulation.grid_rows", Int(aa_rows),
+               StrFormat("square blocks: 8 x %d / %d", h, w)});
+
+  const long cols = std::max(4L, std::lround(w / 80.0)), rows = std::max(3L, std::lround(h / 80.0));
+  s.push_back({"edge_sampling.grid_cols", Int(cols),
+               StrFormat("~80 px sampling blocks (ICRA code), at least 4 x 3 (ESVO2 rpg): "
+                         "max(4, %d / 80)",
+                         w)});
+  s.push_back(
+      {"edge_sampling.grid_rows", Int(rows), StrFormat("max(3, %d / 80), as the columns", h)});
+
+  const std::string budget = small ? "2000" : "2500";
+  const std::string budget_rule = size +
+                                  (small ? ": 2000 (ESVO2 rpg)" : ": the paper's 2500 (DSEC)") +
+                                  "; the cost grows with the samples, not the pixels";
+  s.push_back({"edge_sampling.num_points", budget, budget_rule});
+  s.push_back({"mapping.max_points", budget, "as edge_sampling.num_points"});
+  s.push_back({"edge_sampling.min_spacing_px", small ? "0" : "2",
+               size + (small ? ": 0, every sample goes where the edges are"
+                             : ": 2 px, so that the budget does not crowd the strongest edges")});
+  s.push_back({"mapping.static_stereo.smooth_time_surface", small ? "false" : "true",
+               size + (small ? ": off (ESVO rpg)" : ": on (ESVO, ESVO2 DSEC)")});
+
+  const double rho_mid = std::sqrt(scene.mapping.inv_depth_min * scene.mapping.inv_depth_max);
+  const double disparity_mid_px = sensor.focal_px * sensor.baseline_m * rho_mid;
+  const double relative = kMaxDisparityStddevPx / disparity_mid_px;
+  s.push_back({"mapping.depth_refinement.max_relative_stddev", StrFormat("%.2g", relative),
+               StrFormat("a depth known to 0.51 px of disparity at the middle of the depth "
+                         "range: 0.51 / (f*b %.1f x %.3g 1/m = %.1f px)",
+                         sensor.focal_px * sensor.baseline_m, rho_mid, disparity_mid_px)});
+  return s;
+}
+
+std::vector<ConfigEntry> ToConfigEntries(const std::vector<SensorSetting>& settings) {
+  std::vector<ConfigEntry> entries;
+  for (const SensorSetting& s : settings) {
+    ConfigValue value;
+    value.scalar = s.value;
+    value.origin = "the sensor's settings (" + s.rule + ")";
+    entries.push_back({s.key, std::move(value)});
+  }
+  return entries;
+}
+
+PresetSuggestion SuggestPreset(const SensorFacts& sensor) {
+  if (sensor.baseline_m >= kDrivingBaselineM) {
+    return {"driving", StrFormat("baseline %.2f m >= 0.3 m: a car's rig", sensor.baseline_m)};
+  }
+  return {"indoor",
+          StrFormat("baseline %.2f m < 0.3 m: a hand-held, drone or robot rig", sensor.baseline_m)};
+}
+
+}  // namespace aavio::pipeline
