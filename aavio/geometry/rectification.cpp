@@ -1,5 +1,8 @@
 #include "aavio/geometry/rectification.hpp"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <cmath>
 #include <limits>
 #include <opencv2/imgproc.hpp>
@@ -19,29 +22,33 @@ RectificationMaps BuildRectificationMaps(const CameraModel& raw, const Eigen::Ma
   maps.event_lut.create(height, width, CV_32FC2);
   maps.remap_x.create(height, width, CV_32FC1);
   maps.remap_y.create(height, width, CV_32FC1);
-  for (int y = 0; y < height; ++y) {
-    auto* lut_row = maps.event_lut.ptr<cv::Vec2f>(y);
-    auto* map_x_row = maps.remap_x.ptr<float>(y);
-    auto* map_y_row = maps.remap_y.ptr<float>(y);
-    for (int x = 0; x < width; ++x) {
-      // Raw → rectified: undistort, rotate, project with K'.
-      Eigen::Vector3d ray;
-      lut_row[x] = cv::Vec2f(kNaN, kNaN);
-      if (raw.Unproject(Eigen::Vector2d(x, y), &ray)) {
-        const Eigen::Vector3d p_rect = K_rect * (R_rect_raw * ray);
-        if (p_rect.z() > 1e-9) {
-          lut_row[x] = cv::Vec2f(static_cast<float>(p_rect.x() / p_rect.z()),
-                                 static_cast<float>(p_rect.y() / p_rect.z()));
+  // Rows are independent (each pixel's iterative undistortion is the startup cost at 1280×720).
+  tbb::parallel_for(
+      tbb::blocked_range<int>(0, height, 8), [&](const tbb::blocked_range<int>& rows) {
+        for (int y = rows.begin(); y < rows.end(); ++y) {
+          auto* lut_row = maps.event_lut.ptr<cv::Vec2f>(y);
+          auto* map_x_row = maps.remap_x.ptr<float>(y);
+          auto* map_y_row = maps.remap_y.ptr<float>(y);
+          for (int x = 0; x < width; ++x) {
+            // Raw → rectified: undistort, rotate, project with K'.
+            Eigen::Vector3d ray;
+            lut_row[x] = cv::Vec2f(kNaN, kNaN);
+            if (raw.Unproject(Eigen::Vector2d(x, y), &ray)) {
+              const Eigen::Vector3d p_rect = K_rect * (R_rect_raw * ray);
+              if (p_rect.z() > 1e-9) {
+                lut_row[x] = cv::Vec2f(static_cast<float>(p_rect.x() / p_rect.z()),
+                                       static_cast<float>(p_rect.y() / p_rect.z()));
+              }
+            }
+            // Rectified → raw: back-project with K'⁻¹, rotate back, distort and project.
+            Eigen::Vector2d pixel(-1.0, -1.0);
+            const Eigen::Vector3d p_raw = R_raw_rect * (K_rect_inv * Eigen::Vector3d(x, y, 1.0));
+            if (!raw.Project(p_raw, &pixel)) pixel = {-1e6, -1e6};  // behind the camera: invalid
+            map_x_row[x] = static_cast<float>(pixel.x());
+            map_y_row[x] = static_cast<float>(pixel.y());
+          }
         }
-      }
-      // Rectified → raw: back-project with K'⁻¹, rotate back, distort and project.
-      Eigen::Vector2d pixel(-1.0, -1.0);
-      const Eigen::Vector3d p_raw = R_raw_rect * (K_rect_inv * Eigen::Vector3d(x, y, 1.0));
-      if (!raw.Project(p_raw, &pixel)) pixel = {-1e6, -1e6};  // behind the camera: invalid
-      map_x_row[x] = static_cast<float>(pixel.x());
-      map_y_row[x] = static_cast<float>(pixel.y());
-    }
-  }
+      });
   const cv::Mat ones(height, width, CV_32FC1, cv::Scalar(1.0f));
   cv::Mat coverage;
   cv::remap(ones, coverage, maps.remap_x, maps.remap_y, cv::INTER_LINEAR, cv::BORDER_CONSTANT,

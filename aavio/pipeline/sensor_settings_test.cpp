@@ -39,6 +39,7 @@ std::map<std::string, std::string> Derive(const SensorFacts& sensor, const std::
 TEST(SensorSettings, ReproduceTheReferenceValuesOnTheirRigs) {
   const std::map<std::string, std::string> rpg = Derive(kRpg, "indoor");
   const std::map<std::string, std::string> rpg_expected = {
+      {"time_surface.rate_hz", "100"},
       {"adaptive_accumulation.grid_cols", "8"},
       {"adaptive_accumulation.grid_rows", "6"},
       {"edge_sampling.grid_cols", "4"},
@@ -51,6 +52,7 @@ TEST(SensorSettings, ReproduceTheReferenceValuesOnTheirRigs) {
   EXPECT_EQ(rpg, rpg_expected);
   const std::map<std::string, std::string> dsec = Derive(kDsec, "driving");
   const std::map<std::string, std::string> dsec_expected = {
+      {"time_surface.rate_hz", "100"},
       {"adaptive_accumulation.grid_cols", "8"},
       {"adaptive_accumulation.grid_rows", "6"},
       {"edge_sampling.grid_cols", "8"},
@@ -65,6 +67,7 @@ TEST(SensorSettings, ReproduceTheReferenceValuesOnTheirRigs) {
 
 TEST(SensorSettings, FollowTheResolutionAndTheDisparityElsewhere) {
   const std::map<std::string, std::string> tum = Derive(kTumVie, "indoor");
+  EXPECT_EQ(tum.at("time_surface.rate_hz"), "40");
   EXPECT_EQ(tum.at("adaptive_accumulation.grid_rows"), "5");  // 8 × 720 / 1280 = 4.5
   EXPECT_EQ(tum.at("edge_sampling.grid_cols"), "16");         // 80 px blocks
   EXPECT_EQ(tum.at("edge_sampling.grid_rows"), "9");
