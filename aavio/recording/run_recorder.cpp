@@ -159,6 +159,7 @@ Status RunRecorder::AddTick(const pipeline::OdometryTick& t) {
   }
   if (t.mapping_wait_ms > 0.0) timings_.Add("mapping_wait", t.mapping_wait_ms);
   bootstraps_ += t.bootstrap;
+  if (t.bootstrap && !first_bootstrap_ns_) first_bootstrap_ns_ = t.t_ns;
   if (!t.bootstrap_failure.empty()) {
     ++bootstrap_failures_;
     last_bootstrap_failure_ = t.bootstrap_failure;
@@ -283,6 +284,10 @@ Expected<RunRecord> RunRecorder::Finish(bool interrupted, TimeNs end_ns,
   // Ticks on which a (re-)initialisation found too few points, and the last one's reason.
   s["bootstrap_failures"] = {{"ticks", bootstrap_failures_},
                              {"last_reason", last_bootstrap_failure_}};
+  // Data time from the first tick to the first map (null: never mapped; odometry runs only).
+  s["first_bootstrap_s"] = nullptr;
+  if (first_bootstrap_ns_ && !trajectory_.empty())
+    s["first_bootstrap_s"] = NsToSeconds(*first_bootstrap_ns_ - trajectory_.front().t_ns);
   s["real_time_mode"] = config_.pipeline.real_time;
   s["mapping_cycles"] = mapping_cycles_;
   s["mapping_cycles_skipped"] = skipped_cycles_;

@@ -118,6 +118,7 @@ class RunRecorder {
   int bootstraps_ = 0, reinitialisations_ = 0, skipped_cycles_ = 0, mapping_cycles_ = 0;
   int mapping_cycles_on_ground_truth_ = 0;  ///< AddMappingCycle's
   int bootstrap_failures_ = 0;
+  std::optional<TimeNs> first_bootstrap_ns_;  // data time of the first map
   std::string last_bootstrap_failure_;
   int confirmed_maps_ = 0;
   std::size_t confirmed_points_ = 0;

@@ -179,6 +179,71 @@ Expected<geometry::StereoRig> MvsecRig() {
               {});
 }
 
+// TUM-VIE (Klenk et al., IROS 2021), mocap-desk calibration as ESVO2 publishes it: 1280×720.
+Expected<geometry::StereoRig> TumVieRig() {
+  const CameraIntrinsics left{1280,
+                              720,
+                              1049.583,
+                              1049.423,
+                              634.7184,
+                              263.4698,
+                              DistortionModel::kEquidistant,
+                              {-0.1151966, -0.06222183, 0.2168261, -0.2352862}};
+  const CameraIntrinsics right{1280,
+                               720,
+                               1047.668,
+                               1047.523,
+                               652.9083,
+                               260.541,
+                               DistortionModel::kEquidistant,
+                               {-0.1246107, 0.006075037, 0.03566192, -0.08888043}};
+  const Eigen::Matrix3d R_l = Rows({0.999754826676689, -0.01266626048306591, -0.01816183861944204,
+                                    0.01247096879510851, 0.9998636259452682, -0.01082610035478137,
+                                    0.01829648802297759, 0.01059695036109404, 0.9997764465964727});
+  const Eigen::Matrix3d R_r = Rows({0.9998695874466074, -0.01531690352425632, -0.005118648823660143,
+                                    0.01537085831336992, 0.9998248945376152, 0.0106731896617947,
+                                    0.004954272303945287, -0.01075047576970244, 0.999929938774044});
+  Eigen::Matrix<double, 3, 4> T;
+  T << 0.9999139238730244, 0.00275304520871895, -0.0128283119283708, -0.1187973925652208,
+      -0.003015363491210488, 0.9997858361647609, -0.02047411505649691, 0.002000794259366445,
+      0.01276919840352954, 0.02051103474741225, 0.9997080799041905, 0.0009996342780319578;
+  return Make(
+      left, right, R_l, R_r,
+      Projection(974.8248485687409, 657.1452947326158, 249.0317449660879, 0.0),
+      Projection(974.8248485687409, 665.7830960074431, 249.0317449660879, -115.4845433975721),
+      geometry::RigidTransform::FromMatrix(T), {});
+}
+
+// VECtor (Gao et al., RA-L 2022), the event pair as ESVO2 publishes it (plumb_bob, k3 = 0):
+// 640×480.
+Expected<geometry::StereoRig> VectorRig() {
+  const CameraIntrinsics left{640,
+                              480,
+                              327.32749,
+                              327.46184,
+                              304.97749,
+                              235.37621,
+                              DistortionModel::kRadtan,
+                              {-0.031982, 0.041966, -0.000507, -0.001031}};
+  const CameraIntrinsics right{640,
+                               480,
+                               327.48497,
+                               327.55395,
+                               318.53477,
+                               230.96356,
+                               DistortionModel::kRadtan,
+                               {-0.0263, 0.037995, -0.000513, 0.000167}};
+  const Eigen::Matrix3d R_l = Rows({1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0});
+  const Eigen::Matrix3d R_r = Rows({1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0});
+  Eigen::Matrix<double, 3, 4> T;
+  T << 1.0, 0.0, 0.0, -0.17, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0;
+  return Make(
+      left, right, R_l, R_r,
+      Projection(257.7465659912339, 317.5881580988773, 237.3116097643339, 0.0),
+      Projection(257.7465659912339, 317.5881580988773, 237.3116097643339, -43.81691621850976),
+      geometry::RigidTransform::FromMatrix(T), {});
+}
+
 SimulationPreset Preset(std::string name, std::string description, SceneKind scene,
                         MotionKind motion, double duration_s,
                         Expected<geometry::StereoRig> (*rig)()) {
@@ -210,6 +275,17 @@ std::vector<SimulationPreset> AllPresets() {
   SimulationPreset mvsec = Preset("mvsec", "MVSEC DAVIS346 stereo (upenn), hall, drone flight",
                                   SceneKind::kHall, MotionKind::kDrone, 30.0, &MvsecRig);
   presets.push_back(mvsec);
+  // Prophesee sensors, as DSEC's: Gen4 HD (TUM-VIE) and Gen3 VGA (VECtor).
+  SimulationPreset tum_vie =
+      Preset("tum_vie", "TUM-VIE 1280x720 event pair (mocap-desk), room, hand-held",
+             SceneKind::kRoom, MotionKind::kHandHeld, 20.0, &TumVieRig);
+  SimulationPreset vector = Preset("vector", "VECtor 640x480 event pair, room, hand-held",
+                                   SceneKind::kRoom, MotionKind::kHandHeld, 20.0, &VectorRig);
+  for (SimulationPreset* p : {&tum_vie, &vector}) {
+    p->events = dsec.events;
+    p->camera = CameraKind::kProphesee;
+    presets.push_back(*p);
+  }
   SimulationPreset mini = Preset("mini", "rpg pair at 160x120, room, hand-held, 3 s (tests, demo)",
                                  SceneKind::kRoom, MotionKind::kHandHeld, 3.0, &MiniRig);
   mini.imu.rate_hz = 500.0;

@@ -409,6 +409,9 @@ TEST(Cli, RunOdometryWritesItsOutputsAndIsDeterministic) {
   EXPECT_GE(j["poses"].get<int>(), 140);
   EXPECT_GT(j["status"]["ok"].get<int>(), 0);
   EXPECT_GE(j["bootstraps"].get<int>(), 1);
+  // The mini twin moves from its first tick: the first map comes on the first mapping tick.
+  ASSERT_TRUE(j["first_bootstrap_s"].is_number()) << j["first_bootstrap_s"];
+  EXPECT_LT(j["first_bootstrap_s"].get<double>(), 0.5);
   for (const char* stage : {"event_reading", "event_insertion", "time_surface", "tracking",
                             "matching", "mapping_total"}) {
     EXPECT_TRUE(j["stages"].contains(stage)) << stage;
