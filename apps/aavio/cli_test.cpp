@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -382,6 +383,39 @@ std::string ReadAll(const std::filesystem::path& path) {
 
 // The full odometry: its outputs, no NaN pose, and the same trajectory bit for bit with one and
 // with two threads.
+// Starting at rest: no map is made of the still camera's noise, the bootstrap retries every
+// tick and says why, and the first map comes within 0.5 s of the motion's start.
+TEST(Cli, RunBootstrapsWhenTheCameraStartsMoving) {
+  const auto dir = testing::ScratchDir();
+  // A camera path (TUM, the camera's own frame): 0.6 s still, then 0.3 m/s sideways while
+  // turning at 0.4 rad/s.
+  std::string path = "# t tx ty tz qx qy qz qw\n";
+  for (int i = 0; i <= 400; ++i) {
+    const double t = i / 200.0, moving = std::max(0.0, t - 0.6), yaw = 0.4 * moving;
+    path += StrFormat("%.6f %.6f 0 0 0 %.6f 0 %.6f\n", 100.0 + t, 0.3 * moving, std::sin(yaw / 2),
+                      std::cos(yaw / 2));
+  }
+  const std::string trajectory = testing::WriteFile(dir / "rest_then_move.txt", path);
+  const std::string seq = (dir / "seq").string(), out = (dir / "run").string();
+  Result r = RunAavio({"simulate", "--preset", "mini", "--trajectory", trajectory,
+                       "--body-to-camera", "identity", "--duration", "2", "--out", seq, "--quiet"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  r = RunAavio({"run", seq, "--out", out, "--quiet"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  EXPECT_NE(r.out.find("found too few points and tried again"), std::string::npos) << r.out;
+  std::ifstream in(std::filesystem::path(out) / "summary.json");
+  const nlohmann::json j = nlohmann::json::parse(in);
+  ASSERT_TRUE(j["first_bootstrap_s"].is_number()) << j.dump();
+  EXPECT_GE(j["first_bootstrap_s"].get<double>(), 0.55);  // nothing while still (measured 0.60)
+  EXPECT_LE(j["first_bootstrap_s"].get<double>(), 1.1);
+  EXPECT_GT(j["bootstrap_failures"]["ticks"].get<int>(), 0);
+  EXPECT_NE(j["bootstrap_failures"]["last_reason"].get<std::string>().find("min_points"),
+            std::string::npos);
+  // From the first map on, tracked (measured 139 of the 140 ticks after it, none lost).
+  EXPECT_GE(j["status"]["ok"].get<int>(), 120) << j["status"].dump();
+  EXPECT_EQ(j["reinitialisations"].get<int>(), 0);
+}
+
 TEST(Cli, RunOdometryWritesItsOutputsAndIsDeterministic) {
   const auto dir = testing::ScratchDir();
   const std::string seq = (dir / "seq").string();
