@@ -79,6 +79,8 @@ std::vector<SensorSetting> DeriveSensorSettings(const SensorFacts& sensor,
   const double rho_mid = std::sqrt(scene.mapping.inv_depth_min * scene.mapping.inv_depth_max);
   const double disparity_mid_px = sensor.focal_px * sensor.baseline_m * rho_mid;
   const double relative = kMaxDisparityStddevPx / disparity_mid_px;
+  // No rule without a depth range (the configuration's validation names that key instead).
+  if (!std::isfinite(relative) || relative <= 0.0) return s;
   s.push_back({"mapping.depth_refinement.max_relative_stddev", StrFormat("%.2g", relative),
                StrFormat("a depth known to 0.51 px of disparity at the middle of the depth "
                          "range: 0.51 / (f*b %.1f x %.3g 1/m = %.1f px)",

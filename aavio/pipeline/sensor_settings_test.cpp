@@ -98,6 +98,14 @@ TEST(SensorSettings, ApplyOnTopOfTheDefaultsAndValidate) {
   }
 }
 
+// A depth range that makes no sense gets no cull from it: the validation names the range.
+TEST(SensorSettings, SkipTheCullWithoutADepthRange) {
+  OdometryConfig bad = Preset("indoor");
+  bad.mapping.inv_depth_min = -1.0;
+  for (const SensorSetting& s : DeriveSensorSettings(kRpg, bad))
+    EXPECT_NE(s.key, "mapping.depth_refinement.max_relative_stddev") << s.value;
+}
+
 TEST(SensorSettings, SuggestAPresetByTheBaseline) {
   EXPECT_EQ(SuggestPreset(kDsec).name, "driving");
   EXPECT_EQ(SuggestPreset(kRpg).name, "indoor");

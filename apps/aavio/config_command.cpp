@@ -80,7 +80,7 @@ Expected<std::string> RigHeader(const ConfigSources& sources, const std::string&
   pipeline::OdometryConfig copy = config;
   auto index = BuildFieldIndex(copy);
   for (const pipeline::SensorSetting& s : *derived) {
-    const std::string now = index.fields[s.key].get().scalar;
+    const std::string now = index.fields.at(s.key).get().scalar;
     double a = 0.0, b = 0.0;
     const bool kept = now == s.value || (config_detail::ParseDouble(now, &a).ok() &&
                                          config_detail::ParseDouble(s.value, &b).ok() && a == b);
