@@ -20,10 +20,7 @@ void BM_RenderFrame(benchmark::State& state, const char* preset_name) {
   const geometry::StereoRig rig = *preset.rig();
   const auto poses = preset.motion == sim::MotionKind::kDriving ? sim::DrivingMotion(20, 1)
                                                                 : sim::HandHeldMotion(20, 1);
-  const sim::Scene scene =
-      preset.scene == sim::SceneKind::kStreet
-          ? sim::BuildStreet(poses, sim::BuiltInGravity(), 1.4, 1)
-          : (preset.scene == sim::SceneKind::kHall ? sim::BuildHall(1) : sim::BuildRoom(1));
+  const sim::Scene scene = sim::BuildScene(preset.scene, poses, sim::BuiltInGravity(), 1.4, 1);
   const sim::Renderer renderer(rig.left());
   sim::RenderedImage image;
   std::size_t k = 0;
@@ -37,6 +34,7 @@ BENCHMARK_CAPTURE(BM_RenderFrame, mini, "mini")->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_RenderFrame, rpg, "rpg")->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_RenderFrame, mvsec, "mvsec")->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_RenderFrame, dsec, "dsec")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_RenderFrame, vector, "vector")->Unit(benchmark::kMillisecond);
 
 void BM_EventStepDsec(benchmark::State& state) {
   const int w = 640, h = 480;

@@ -277,10 +277,10 @@ std::vector<SimulationPreset> AllPresets() {
   presets.push_back(mvsec);
   // Prophesee sensors, as DSEC's: Gen4 HD (TUM-VIE) and Gen3 VGA (VECtor).
   SimulationPreset tum_vie =
-      Preset("tum_vie", "TUM-VIE 1280x720 event pair (mocap-desk), room, hand-held",
-             SceneKind::kRoom, MotionKind::kHandHeld, 20.0, &TumVieRig);
-  SimulationPreset vector = Preset("vector", "VECtor 640x480 event pair, room, hand-held",
-                                   SceneKind::kRoom, MotionKind::kHandHeld, 20.0, &VectorRig);
+      Preset("tum_vie", "TUM-VIE 1280x720 event pair (mocap-desk), office, hand-held",
+             SceneKind::kOffice, MotionKind::kHandHeld, 20.0, &TumVieRig);
+  SimulationPreset vector = Preset("vector", "VECtor 640x480 event pair, lab, hand-held",
+                                   SceneKind::kLab, MotionKind::kHandHeld, 20.0, &VectorRig);
   for (SimulationPreset* p : {&tum_vie, &vector}) {
     p->events = dsec.events;
     p->camera = CameraKind::kProphesee;

@@ -4,8 +4,8 @@
 ///   rpg    DAVIS240C stereo pair (Zhou et al., ECCV 2018), room, hand-held 6-DoF
 ///   dsec   the 640×480 event pair of DSEC zurich_city_04_a, street canyon, urban driving
 ///   mvsec  the DAVIS346 pair of MVSEC (upenn calibration, equidistant), hall, drone flight
-///   tum_vie  the 1280×720 Prophesee pair of TUM-VIE (mocap-desk calibration), room, hand-held
-///   vector   the 640×480 Prophesee pair of VECtor, room, hand-held
+///   tum_vie  the 1280×720 Prophesee pair of TUM-VIE (mocap-desk calibration), office, hand-held
+///   vector   the 640×480 Prophesee pair of VECtor, lab, hand-held
 ///   mini   the rpg pair at 2/3 resolution (160×120), room, hand-held, 3 s: tests and the demo
 
 #include <string>
@@ -15,10 +15,10 @@
 #include "aavio/geometry/stereo_rig.hpp"
 #include "aavio/sim/event_generator.hpp"
 #include "aavio/sim/imu_synthesis.hpp"
+#include "aavio/sim/scene_builder.hpp"
 
 namespace aavio::sim {
 
-enum class SceneKind { kRoom, kStreet, kHall };
 enum class MotionKind { kHandHeld, kDriving, kDrone };
 /// The sensor family, for the realistic sensor levels (sensor_model.hpp): their refractory
 /// period, noise and readout differ.

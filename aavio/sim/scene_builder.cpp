@@ -3,44 +3,15 @@
 #include <cmath>
 #include <random>
 
+#include "aavio/sim/furniture.hpp"
+
 namespace aavio::sim {
 
 namespace {
 
-/// A random texture with edges of every orientation; `cell_lo/hi` set its scale [m]. About a
-/// third of the surfaces carry horizontal structure (bricks, windows, level stripes): the case
-/// temporal stereo exists for.
-Texture RandomTexture(std::mt19937_64& rng, double cell_lo, double cell_hi) {
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  Texture t;
-  const double pick = unit(rng);
-  t.pattern = pick < 0.25   ? Pattern::kBricks
-              : pick < 0.5  ? Pattern::kTiles
-              : pick < 0.75 ? Pattern::kBlobs
-                            : Pattern::kStripes;
-  t.cell_m = cell_lo * std::pow(cell_hi / cell_lo, unit(rng));
-  const bool level = t.pattern == Pattern::kBricks || unit(rng) < 0.3;
-  t.angle_rad = level ? 0.0 : unit(rng) * M_PI;
-  t.contrast = 0.5 + 0.4 * unit(rng);
-  t.mean = 0.35 + 0.3 * unit(rng);
-  t.seed = rng();
-  return t;
-}
-
 Quad MakeQuad(const Eigen::Vector3d& origin, const Eigen::Vector3d& u, const Eigen::Vector3d& v,
               const Texture& texture) {
   return {origin, u, v, texture};
-}
-
-/// Box standing on a floor whose "up" is `up`, facing `forward` (perpendicular to up).
-void AddStandingBox(Scene* scene, const Eigen::Vector3d& base_centre, const Eigen::Vector3d& up,
-                    const Eigen::Vector3d& forward, const Eigen::Vector3d& size,
-                    const std::vector<Texture>& textures) {
-  Eigen::Matrix3d R;
-  R.col(2) = up.normalized();
-  R.col(1) = forward.normalized();
-  R.col(0) = R.col(1).cross(R.col(2));
-  scene->AddBox({R, base_centre + up.normalized() * size.z() / 2.0}, size, textures, false);
 }
 
 }  // namespace
@@ -129,6 +100,56 @@ Scene BuildHall(std::uint64_t seed) {
   return scene;
 }
 
+Scene BuildOffice(std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  Scene scene;
+  const double y_floor = 1.0;  // the camera is held about a metre above the floor
+  AddRoomShell(&scene, rng, {-2.5, -1.6, -2.0}, {2.5, y_floor, 2.4}, 9);
+  // The desk the camera looks at, its monitor and clutter; 0.7–1.5 m ahead.
+  const double desk_top =
+      y_floor - AddTable(&scene, rng, {0.0, y_floor, 1.1}, 0.0, {1.6, 0.8, 0.74}, 8);
+  AddMonitor(&scene, rng, {0.3 * (unit(rng) - 0.5), desk_top, 1.35}, 0.0);
+  // Bookshelves against the wall behind the desk, a side table and a cabinet.
+  for (double x : {-1.6, 1.6}) {
+    AddShelf(&scene, rng, {x, y_floor, 2.15}, 0.0, {0.9, 0.35, 1.9}, 5);
+  }
+  AddTable(&scene, rng, {1.9, y_floor, 0.6}, -M_PI / 2, {1.2, 0.6, 0.74}, 5);
+  AddStandingBox(&scene, {-1.95, y_floor, 1.0}, -Eigen::Vector3d::UnitY(), Eigen::Vector3d::UnitX(),
+                 {0.6, 0.5, 1.1}, {RandomTexture(rng, 0.05, 0.2), RandomTexture(rng, 0.02, 0.1)});
+  scene.Build();
+  return scene;
+}
+
+Scene BuildLab(std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  Scene scene;
+  const double y_floor = 1.3;
+  const Eigen::Vector3d up = -Eigen::Vector3d::UnitY();
+  AddRoomShell(&scene, rng, {-3.5, -1.7, -2.5}, {3.5, y_floor, 3.5}, 10);
+  // A workbench ahead, a robot arm on its own table, a sofa along the left wall, shelves along
+  // the far wall, a cabinet and crates: the furniture of a mocap lab.
+  AddTable(&scene, rng, {0.2, y_floor, 1.4}, 0.0, {1.6, 0.8, 0.9}, 8);
+  const double arm_table = AddTable(&scene, rng, {-0.9, y_floor, 2.1}, 0.0, {0.8, 0.8, 0.75}, 2);
+  AddRobotArm(&scene, rng, {-0.9, y_floor - arm_table, 2.1}, M_PI * (unit(rng) - 0.5));
+  AddSofa(&scene, rng, {-3.05, y_floor, 0.6}, -M_PI / 2);
+  for (double x : {-2.2, 2.2}) {
+    AddShelf(&scene, rng, {x, y_floor, 3.25}, 0.0, {1.0, 0.4, 2.0}, 5);
+  }
+  AddStandingBox(&scene, {3.15, y_floor, 1.2}, up, Eigen::Vector3d::UnitX(), {0.8, 0.6, 1.2},
+                 {RandomTexture(rng, 0.05, 0.2), RandomTexture(rng, 0.02, 0.1)});
+  for (int k = 0; k < 3; ++k) {
+    const Eigen::Vector3d size(0.3 + 0.4 * unit(rng), 0.3 + 0.4 * unit(rng), 0.2 + 0.4 * unit(rng));
+    const Eigen::Vector3d base(1.2 + 1.6 * unit(rng), y_floor, 2.0 + 0.8 * unit(rng));
+    const double yaw = unit(rng) * M_PI;
+    AddStandingBox(&scene, base, up, Eigen::Vector3d(std::sin(yaw), 0, std::cos(yaw)), size,
+                   {RandomTexture(rng, 0.03, 0.12), RandomTexture(rng, 0.03, 0.12)});
+  }
+  scene.Build();
+  return scene;
+}
+
 Scene BuildStreet(const std::vector<geometry::StampedPose>& path, const Eigen::Vector3d& down_in,
                   double camera_height_m, std::uint64_t seed) {
   std::mt19937_64 rng(seed);
@@ -206,6 +227,23 @@ Scene BuildStreet(const std::vector<geometry::StampedPose>& path, const Eigen::V
   scene.sky_albedo = 0.8;
   scene.Build();
   return scene;
+}
+
+Scene BuildScene(SceneKind kind, const std::vector<geometry::StampedPose>& path,
+                 const Eigen::Vector3d& down, double camera_height_m, std::uint64_t seed) {
+  switch (kind) {
+    case SceneKind::kOffice:
+      return BuildOffice(seed);
+    case SceneKind::kLab:
+      return BuildLab(seed);
+    case SceneKind::kHall:
+      return BuildHall(seed);
+    case SceneKind::kStreet:
+      return BuildStreet(path, down, camera_height_m, seed);
+    case SceneKind::kRoom:
+      break;
+  }
+  return BuildRoom(seed);
 }
 
 }  // namespace aavio::sim

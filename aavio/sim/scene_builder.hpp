@@ -9,14 +9,27 @@
 
 namespace aavio::sim {
 
+enum class SceneKind { kRoom, kOffice, kLab, kHall, kStreet };
+
 /// rpg-like room: walls ~3 m around the start, floor 1.3 m below the camera, posters and boxes
 /// 0.5–4 m from the start position.
 Scene BuildRoom(std::uint64_t seed);
+/// Office around a desk (TUM-VIE's mocap desk): the desk 0.7–1.5 m ahead with a monitor, books
+/// and boxes, bookshelves behind it, a side table and a cabinet; the floor 1 m below the camera.
+Scene BuildOffice(std::uint64_t seed);
+/// Lab (VECtor's mocap room): a workbench, a robot arm on a table, a sofa, shelves, a cabinet
+/// and crates in a 7 × 3 × 6 m room.
+Scene BuildLab(std::uint64_t seed);
 /// MVSEC-like hall: 20 × 8 × 20 m with pillars and crates.
 Scene BuildHall(std::uint64_t seed);
 /// DSEC-like street canyon laid along `path` (camera positions; `down` = gravity direction):
 /// road with markings, facades 6–15 m to each side with windows and ledges, poles, parked cars.
 Scene BuildStreet(const std::vector<geometry::StampedPose>& path, const Eigen::Vector3d& down,
                   double camera_height_m, std::uint64_t seed);
+
+/// The scene of `kind`; the street is laid along `path` (the others ignore it, `down` and
+/// `camera_height_m`).
+Scene BuildScene(SceneKind kind, const std::vector<geometry::StampedPose>& path,
+                 const Eigen::Vector3d& down, double camera_height_m, std::uint64_t seed);
 
 }  // namespace aavio::sim

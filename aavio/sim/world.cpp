@@ -88,19 +88,8 @@ Expected<SimulationWorld> BuildSimulationWorld(const SimulationRequest& request)
   if (!spline) return spline.status();
 
   const geometry::RigidTransform T_world_canonical = SceneFrame(*motion);
-  Scene scene;
-  switch (preset->scene) {
-    case SceneKind::kRoom:
-      scene = BuildRoom(request.seed);
-      break;
-    case SceneKind::kHall:
-      scene = BuildHall(request.seed);
-      break;
-    case SceneKind::kStreet:
-      scene =
-          BuildStreet(motion->poses, motion->gravity_world, preset->camera_height_m, request.seed);
-      break;
-  }
+  Scene scene = BuildScene(preset->scene, motion->poses, motion->gravity_world,
+                           preset->camera_height_m, request.seed);
   if (preset->scene != SceneKind::kStreet) scene.Transform(T_world_canonical);
   return SimulationWorld{
       std::move(*preset), std::move(*sensor), std::move(*rig),  std::move(*calibration_rig),
