@@ -29,8 +29,10 @@ Odometry::Odometry(const geometry::StereoRig& rig, const OdometryConfig& config,
       mapper_(stereo_, rectification_.left.valid_mask, config.mapping),
       tick_ns_(SecondsToNs(1.0 / config.time_surface.rate_hz)),
       next_tick_ns_(start_ns + tick_ns_),
-      ticks_per_cycle_(std::max(
-          1, static_cast<int>(std::lround(config.time_surface.rate_hz / config.mapping.rate_hz)))),
+      last_tick_ns_(start_ns),
+      cycle_ns_(tick_ns_ * std::max(1, static_cast<int>(std::lround(config.time_surface.rate_hz /
+                                                                    config.mapping.rate_hz)))),
+      next_cycle_ns_(start_ns + cycle_ns_),
       run_mapping_(run_mapping) {
   tracker_.Reset(start_ns, T_world_start);
 }
@@ -55,15 +57,22 @@ Status Odometry::CollectCycle(OdometryTick* tick, bool wait) {
 }
 
 Status Odometry::Process(std::span<const events::Event> left, std::span<const events::Event> right,
-                         std::span<const imu::ImuSample> imu, TimeNs t_end_ns) {
+                         std::span<const imu::ImuSample> imu, TimeNs t_end_ns, TickPolicy policy) {
   const auto start = std::chrono::steady_clock::now();
   AAVIO_RETURN_IF_ERROR(builder_.AddEvents(events::Camera::kLeft, left));
   AAVIO_RETURN_IF_ERROR(builder_.AddEvents(events::Camera::kRight, right));
   last_insertion_ms_ =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   imu_.insert(imu_.end(), imu.begin(), imu.end());
+  int skipped = 0;
+  if (policy == TickPolicy::kLatest && next_tick_ns_ < t_end_ns) {
+    skipped = static_cast<int>((t_end_ns - 1 - next_tick_ns_) / tick_ns_);
+    next_tick_ns_ += skipped * tick_ns_;
+  }
   while (next_tick_ns_ < t_end_ns) {
-    AAVIO_RETURN_IF_ERROR(Tick(next_tick_ns_));
+    AAVIO_RETURN_IF_ERROR(Tick(next_tick_ns_, skipped));
+    skipped = 0;
+    last_tick_ns_ = next_tick_ns_;
     next_tick_ns_ += tick_ns_;
   }
   return Status::Ok();
@@ -80,22 +89,26 @@ void Odometry::PublishToTracking(const mapping::LocalMapPtr& map) {
   tracker_.SetMap(std::move(tracking_map));
 }
 
-Status Odometry::Tick(TimeNs t_ns) {
+Status Odometry::Tick(TimeNs t_ns, int skipped_ticks) {
   auto obs = std::make_shared<events::Observation>();
   // The right time surface, AA map and samples only where mapping may run: a bootstrap, or a
   // mapping cycle's tick (and where a ground-truth map is built from the samples, without mapping).
-  const bool maps_here =
-      run_mapping_ && (!mapper_.initialized() || (ticks_ + 1) % ticks_per_cycle_ == 0);
+  // Mapping cycles are due on a fixed grid of data time (every rate_hz/mapping.rate_hz ticks).
+  const bool cycle_due = t_ns >= next_cycle_ns_;
+  while (next_cycle_ns_ <= t_ns)
+    next_cycle_ns_ += cycle_ns_;
+  const bool maps_here = run_mapping_ && (!mapper_.initialized() || cycle_due);
   AAVIO_RETURN_IF_ERROR(builder_.Build(
       t_ns, obs.get(), {.right_ts = maps_here, .edges = maps_here || !run_mapping_}));
   ++ticks_;
   OdometryTick tick;
   tick.t_ns = t_ns;
+  tick.skipped_ticks = skipped_ticks;
   tick.representation = obs->timings;
   if (before_tick) before_tick(*obs);
   if (config_.pipeline.real_time) {
     AAVIO_RETURN_IF_ERROR(CollectCycle(&tick, /*wait=*/false));
-  } else if (pending_cycle_.valid() && ticks_ - pending_cycle_tick_ >= ticks_per_cycle_) {
+  } else if (pending_cycle_.valid() && t_ns - pending_cycle_t_ns_ >= cycle_ns_) {
     // Concurrent mapping: the cycle started one cycle ago reaches tracking now, however long
     // it took in wall time.
     const auto start = std::chrono::steady_clock::now();
@@ -104,10 +117,16 @@ Status Odometry::Tick(TimeNs t_ns) {
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   }
 
-  // The IMU samples around (previous tick, t]: keep one at or before the previous tick.
-  while (imu_.size() > 2 && imu_[1].t_ns <= t_ns - tick_ns_)
+  // The IMU samples around (previous tick, t]: from the last at or before the previous tick to
+  // the first at or after t — whatever else has arrived is left for later ticks, so the output
+  // does not depend on how the input was split.
+  while (imu_.size() > 2 && imu_[1].t_ns <= last_tick_ns_)
     imu_.pop_front();
-  const std::vector<imu::ImuSample> window(imu_.begin(), imu_.end());
+  auto window_end = imu_.begin();
+  while (window_end != imu_.end() && window_end->t_ns < t_ns)
+    ++window_end;
+  if (window_end != imu_.end()) ++window_end;
+  const std::vector<imu::ImuSample> window(imu_.begin(), window_end);
   const tracking::TrackingResult tracked =
       tracker_.Track(*obs, rectification_.left.valid_mask, window);
   tick.T_world_cam = tracked.T_world_cur;
@@ -137,7 +156,7 @@ Status Odometry::Tick(TimeNs t_ns) {
     }
   } else if (tracked.status == tracking::TrackingStatus::kOk) {
     lost_ticks_ = 0;
-    if (ticks_ % ticks_per_cycle_ == 0) {
+    if (cycle_due) {
       const mapping::Mapper::Partners partners = mapper_.TemporalPartnersFor(tracked.T_world_cur);
       const bool on_thread = config_.pipeline.real_time || config_.pipeline.concurrent_mapping;
       if (!on_thread) {
@@ -153,7 +172,7 @@ Status Odometry::Tick(TimeNs t_ns) {
       } else if (pending_cycle_.valid()) {
         tick.mapping_skipped = true;  // the last cycle still runs: this one is dropped
       } else {
-        pending_cycle_tick_ = ticks_;
+        pending_cycle_t_ns_ = t_ns;
         // The partners are copies: the mapper may remember later observations meanwhile.
         pending_cycle_ = std::async(std::launch::async, [this, now, partners] {
           CycleResult r;

@@ -51,7 +51,10 @@ struct OdometryTick {
   /// A (re-)initialisation was tried on this tick and found too few points: why (it is tried
   /// again on the next tick).
   std::string bootstrap_failure;
-  bool reinitialised = false;           ///< tracking was lost too long: mapping was reset here
+  bool reinitialised = false;  ///< tracking was lost too long: mapping was reset here
+  /// Ticks due before this one that were not run (TickPolicy::kLatest: a live input catching
+  /// up); their events are in this tick's time surfaces.
+  int skipped_ticks = 0;
   bool mapping_skipped = false;         ///< real-time mode: a cycle was due but the last still ran
   double mapping_wait_ms = 0.0;         ///< concurrent mapping: waited this long for the last cycle
   mapping::MappingCycleReport mapping;  ///< of the cycle, if one ran (not for bootstraps)
@@ -61,6 +64,12 @@ struct OdometryTick {
   Eigen::Vector3d gyro_bias = Eigen::Vector3d::Zero();
 };
 
+/// Which of the ticks due in one Process call run.
+enum class TickPolicy {
+  kEvery,   ///< all of them, in order (files, and live input that keeps up)
+  kLatest,  ///< only the last; the others are skipped and counted (live input that fell behind)
+};
+
 class Odometry {
  public:
   /// `T_world_start`: the pose at `start_ns` (identity: the world is the first camera frame).
@@ -68,9 +77,13 @@ class Odometry {
            const geometry::RigidTransform& T_world_start = {}, bool run_mapping = true);
 
   /// Adds both cameras' events and the IMU samples of [.., t_end_ns) (each time-ordered) and runs
-  /// every tick due by then; each goes to `on_tick`.
+  /// the ticks due by then (all, or with kLatest the last); each goes to `on_tick`. How the data
+  /// is split into calls does not change the output.
   Status Process(std::span<const events::Event> left, std::span<const events::Event> right,
-                 std::span<const imu::ImuSample> imu, TimeNs t_end_ns);
+                 std::span<const imu::ImuSample> imu, TimeNs t_end_ns,
+                 TickPolicy policy = TickPolicy::kEvery);
+  /// The time of the next tick due.
+  TimeNs next_tick_ns() const { return next_tick_ns_; }
 
   std::function<void(const OdometryTick&)> on_tick;
   /// Called with each tick's observation before it is tracked.
@@ -85,7 +98,7 @@ class Odometry {
   ~Odometry();
 
  private:
-  Status Tick(TimeNs t_ns);
+  Status Tick(TimeNs t_ns, int skipped_ticks);
   void PublishToTracking(const mapping::LocalMapPtr& map);
   // Concurrent and real-time modes: a mapping cycle on its own thread, and its result.
   struct CycleResult {
@@ -104,10 +117,12 @@ class Odometry {
   mapping::Mapper mapper_;
   std::deque<imu::ImuSample> imu_;
   TimeNs tick_ns_, next_tick_ns_;
-  int ticks_per_cycle_;
+  TimeNs last_tick_ns_;  // the last tick run (the start before the first)
+  TimeNs cycle_ns_;       // mapping period: a whole number of ticks
+  TimeNs next_cycle_ns_;  // the next mapping cycle is due at the first tick at or after it
   bool run_mapping_;
   std::future<CycleResult> pending_cycle_;
-  std::int64_t pending_cycle_tick_ = 0;  // the tick the pending cycle was started on
+  TimeNs pending_cycle_t_ns_ = 0;  // the tick the pending cycle was started on
   std::int64_t ticks_ = 0;
   int lost_ticks_ = 0;
   double last_insertion_ms_ = 0.0;

@@ -89,6 +89,13 @@ TrackingResult Tracker::Track(const events::Observation& obs, const cv::Mat& val
   }
   if (imu_config_.use_gyro_prior && delta_R_imu)
     delta_R_cam = imu::ImuToCameraRotation(*delta_R_imu, R_imu_cam_);
+  // The velocity is a translation per tick: over a longer interval (ticks skipped by a live
+  // input that fell behind) it is scaled to this one.
+  const TimeNs dt_ns = obs.t_ns - t_prev_;
+  if (velocity_dt_ns_ > 0 && dt_ns > 0 && dt_ns != velocity_dt_ns_) {
+    velocity_ *= static_cast<double>(dt_ns) / static_cast<double>(velocity_dt_ns_);
+  }
+  velocity_dt_ns_ = dt_ns;
   const geometry::RigidTransform predicted =
       PredictPose(T_prev_, T_prevprev_, delta_R_cam, velocity_);
   result.prediction_ms = MsSince(start);

@@ -84,7 +84,8 @@ class Tracker {
   geometry::RigidTransform T_prev_;
   std::optional<geometry::RigidTransform> T_prevprev_;
   Eigen::Vector3d velocity_ = Eigen::Vector3d::Zero();  // smoothed translation per tick
-  bool prev_tracked_ = false;                           // the previous pose came from registration
+  TimeNs velocity_dt_ns_ = 0;  // the tick interval velocity_ is a translation over (0: unknown)
+  bool prev_tracked_ = false;  // the previous pose came from registration
   std::int64_t ticks_ = 0;
 };
 
