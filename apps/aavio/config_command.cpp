@@ -9,14 +9,14 @@
 #include "aavio/io/config_yaml.hpp"
 #include "aavio/io/sequence.hpp"
 #include "cli.hpp"
-#include "config_resolution.hpp"
+#include "config_options.hpp"
 
 namespace aavio::cli {
 
 namespace {
 
 struct ConfigOptions {
-  ConfigSources sources;
+  config::ConfigSources sources;
   std::string for_path;
   std::string out_path;
   bool list = false;
@@ -69,9 +69,10 @@ Expected<io::LoadedCalibration> CalibrationOf(const std::string& path) {
 
 // The header of a configuration made for a rig: the sensor, the preset and every derived value
 // with its rule (a later source that changes one is named).
-Expected<std::string> RigHeader(const ConfigSources& sources, const std::string& preset_reason,
+Expected<std::string> RigHeader(const config::ConfigSources& sources,
+                                const std::string& preset_reason,
                                 const pipeline::OdometryConfig& config) {
-  Expected<std::vector<pipeline::SensorSetting>> derived = SensorSettingsOf(sources);
+  Expected<std::vector<pipeline::SensorSetting>> derived = config::SensorSettingsOf(sources);
   if (!derived) return derived.status();
   std::string text = "sensor: " + sources.sensor->Describe() + "\n";
   text += "preset: " + sources.preset +
@@ -100,9 +101,9 @@ int RunConfig(ConfigOptions options, Context& ctx) {
     }
     for (const std::string& warning : calibration->warnings)
       ctx.err << "warning: " << warning << "\n";
-    preset_reason = ConfigureForRig(calibration->rig, &options.sources);
+    preset_reason = config::ConfigureForRig(calibration->rig, &options.sources);
   }
-  Expected<pipeline::OdometryConfig> config = ResolveOdometryConfig(options.sources);
+  Expected<pipeline::OdometryConfig> config = config::ResolveOdometryConfig(options.sources);
   if (!config) {
     ctx.err << "aavio config: error: " << config.status().message() << "\n";
     return kExitError;
@@ -127,7 +128,7 @@ int RunConfig(ConfigOptions options, Context& ctx) {
     return kExitOk;
   }
   std::string header = "aavio effective configuration (" + VersionString() +
-                       ")\nfrom: " + DescribeSources(options.sources);
+                       ")\nfrom: " + config::DescribeSources(options.sources);
   if (options.sources.sensor) {
     Expected<std::string> rig_header = RigHeader(options.sources, preset_reason, *config);
     if (!rig_header) {

@@ -8,7 +8,7 @@
 #include "aavio/events/representation_builder.hpp"
 #include "aavio/geometry/rectification.hpp"
 #include "cli.hpp"
-#include "config_resolution.hpp"
+#include "config_options.hpp"
 #include "representation_images.hpp"
 #include "sequence_opening.hpp"
 
@@ -21,14 +21,14 @@ struct RepresentationsOptions {
   std::string out_dir;
   double at_s = -1.0;
   double history_s = 0.3;
-  ConfigSources config;
+  config::ConfigSources config;
 };
 
 Status Run(RepresentationsOptions options, Context& ctx) {
   Expected<OpenedSequence> opened = OpenSequence(options.sequence, options.calibration);
   if (!opened) return opened.status();
-  ConfigureForRig(opened->calibration.rig, &options.config);
-  Expected<pipeline::OdometryConfig> config = ResolveOdometryConfig(options.config);
+  config::ConfigureForRig(opened->calibration.rig, &options.config);
+  Expected<pipeline::OdometryConfig> config = config::ResolveOdometryConfig(options.config);
   if (!config) return config.status();
   const geometry::StereoRig& rig = opened->calibration.rig;
   io::SequenceReader* reader = opened->reader.get();

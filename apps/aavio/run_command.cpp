@@ -25,7 +25,7 @@
 #include "aavio/pipeline/odometry.hpp"
 #include "aavio/recording/run_recorder.hpp"
 #include "cli.hpp"
-#include "config_resolution.hpp"
+#include "config_options.hpp"
 #include "ground_truth_maps.hpp"
 #include "sequence_opening.hpp"
 
@@ -42,7 +42,7 @@ struct RunOptions {
   bool real_time = false;
   bool quiet = false;
   double start_s = 0.0, duration_s = 0.0;
-  ConfigSources config;
+  config::ConfigSources config;
 };
 
 std::atomic<bool> g_interrupted{false};  // Ctrl-C during a run: stop and write what is done
@@ -57,7 +57,7 @@ void ConfigureForSequence(const OpenedSequence& opened, RunOptions* options, Con
     for (const std::string& warning : opened.calibration.warnings)
       ctx.err << "warning: " << warning << "\n";
   }
-  const std::string why = ConfigureForRig(opened.calibration.rig, &options->config);
+  const std::string why = config::ConfigureForRig(opened.calibration.rig, &options->config);
   if (!why.empty() && !options->quiet) {
     ctx.err << "aavio run: no --preset given; using '" << options->config.preset << "' (" << why
             << ")\n";
@@ -219,7 +219,7 @@ Status Run(RunOptions options, Context& ctx) {
   // if a file named "esvo" is here), after the user's files; --set still applies.
   if (options.esvo) options.config.overlays.push_back("esvo");
   if (options.real_time) options.config.overrides.push_back("pipeline.real_time=true");
-  Expected<pipeline::OdometryConfig> config = ResolveOdometryConfig(options.config);
+  Expected<pipeline::OdometryConfig> config = config::ResolveOdometryConfig(options.config);
   if (!config) return config.status();
   const geometry::StereoRig& rig = opened->calibration.rig;
   io::SequenceReader* reader = opened->reader.get();
@@ -264,7 +264,7 @@ Status Run(RunOptions options, Context& ctx) {
   recorder_options.begin_ns = begin;
   recorder_options.config_yaml = io::FormatConfigYaml(
       FlattenConfig(*config), "aavio effective configuration (" + VersionString() +
-                                  ")\nfrom: " + DescribeSources(options.config) +
+                                  ")\nfrom: " + config::DescribeSources(options.config) +
                                   (options.esvo ? " (ESVO-like mode, --esvo)" : ""));
   Expected<std::unique_ptr<recording::RunRecorder>> opened_recorder =
       recording::RunRecorder::Open(recorder_options, rig, *config);

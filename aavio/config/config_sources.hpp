@@ -1,8 +1,13 @@
 #pragma once
 /// Builds the effective OdometryConfig from its sources, in this order (later wins):
-/// defaults → the sensor's settings (when a sequence's rig is known; pipeline/sensor_settings.hpp)
-/// → --preset NAME → --config FILE (each, in order; a shipped overlay's name unless a
-/// file of that name exists) → overlays a command adds (`run --esvo`) → --set key=value.
+/// defaults → the sensor's settings (when the rig is known; pipeline/sensor_settings.hpp) →
+/// a preset (configs/*.yaml, embedded) → YAML files (each, in order; a shipped overlay's name
+/// unless a file of that name exists) → overlays (`run --esvo`) → key=value overrides. The CLI's
+/// --preset, --config and --set fill these; a program does the same:
+///
+///   config::ConfigSources sources;                // sources.preset = "indoor" to choose
+///   config::ConfigureForRig(rig, &sources);       // the sensor's settings, a suggested preset
+///   Expected<pipeline::OdometryConfig> c = config::ResolveOdometryConfig(sources);
 
 #include <optional>
 #include <string>
@@ -12,11 +17,7 @@
 #include "aavio/pipeline/odometry_config.hpp"
 #include "aavio/pipeline/sensor_settings.hpp"
 
-namespace CLI {
-class App;
-}
-
-namespace aavio::cli {
+namespace aavio::config {
 
 struct ConfigSources {
   std::string preset;
@@ -30,9 +31,6 @@ struct ConfigSources {
 /// preset the rig suggests. Returns why that preset ("" when one was named).
 std::string ConfigureForRig(const geometry::StereoRig& rig, ConfigSources* sources);
 
-/// Adds --preset, --config and --set to a subcommand.
-void AddConfigOptions(CLI::App& sub, ConfigSources* sources);
-
 /// The settings derived from `sources.sensor` (none without one), for the scene the other
 /// sources make.
 Expected<std::vector<pipeline::SensorSetting>> SensorSettingsOf(const ConfigSources& sources);
@@ -44,4 +42,4 @@ Expected<pipeline::OdometryConfig> ResolveOdometryConfig(const ConfigSources& so
 /// after the sensor's settings when there are any).
 std::string DescribeSources(const ConfigSources& sources);
 
-}  // namespace aavio::cli
+}  // namespace aavio::config

@@ -1,0 +1,54 @@
+#include "aavio/config/config_sources.hpp"
+
+#include <gtest/gtest.h>
+
+#include "aavio/sim/presets.hpp"
+
+namespace aavio::config {
+namespace {
+
+geometry::StereoRig Rig(const std::string& simulation_preset) {
+  Expected<sim::SimulationPreset> preset = sim::GetSimulationPreset(simulation_preset);
+  EXPECT_TRUE(preset.ok());
+  Expected<geometry::StereoRig> rig = preset->rig();
+  EXPECT_TRUE(rig.ok()) << rig.status().message();
+  return *rig;
+}
+
+TEST(ConfigSources, AProgramConfiguresForItsRigInTwoCalls) {
+  // No preset named: the rig's baseline picks one and says why; the sensor's settings apply.
+  ConfigSources sources;
+  const std::string why = ConfigureForRig(Rig("dsec"), &sources);
+  EXPECT_EQ(sources.preset, "driving");
+  EXPECT_NE(why.find("baseline"), std::string::npos) << why;
+  Expected<pipeline::OdometryConfig> config = ResolveOdometryConfig(sources);
+  ASSERT_TRUE(config.ok()) << config.status().message();
+  EXPECT_EQ(config->adaptive_accumulation.grid_cols, 8);  // derived: 8 blocks across
+  EXPECT_EQ(DescribeSources(sources), "the sensor's settings + preset driving");
+
+  // A named preset stays, an override wins over everything.
+  ConfigSources named{.preset = "indoor", .overrides = {"mapping.rate_hz=5"}};
+  EXPECT_EQ(ConfigureForRig(Rig("rpg"), &named), "");
+  Expected<pipeline::OdometryConfig> overridden = ResolveOdometryConfig(named);
+  ASSERT_TRUE(overridden.ok()) << overridden.status().message();
+  EXPECT_EQ(overridden->mapping.rate_hz, 5.0);
+}
+
+TEST(ConfigSources, BadSourcesAreErrorsThatSayWhatToDo) {
+  ConfigSources old_name{.preset = "rpg"};
+  Expected<pipeline::OdometryConfig> a = ResolveOdometryConfig(old_name);
+  ASSERT_FALSE(a.ok());
+  EXPECT_NE(a.status().message().find("indoor"), std::string::npos) << a.status().message();
+  ConfigSources absurd{.overrides = {"mapping.rate_hz=-3"}};
+  Expected<pipeline::OdometryConfig> b = ResolveOdometryConfig(absurd);
+  ASSERT_FALSE(b.ok());
+  EXPECT_NE(b.status().message().find("rate_hz"), std::string::npos) << b.status().message();
+  ConfigSources missing{.files = {"/nonexistent/my.yaml"}};
+  Expected<pipeline::OdometryConfig> c = ResolveOdometryConfig(missing);
+  ASSERT_FALSE(c.ok());
+  EXPECT_NE(c.status().message().find("/nonexistent/my.yaml"), std::string::npos)
+      << c.status().message();
+}
+
+}  // namespace
+}  // namespace aavio::config
