@@ -1,5 +1,6 @@
 # aavio_add_library(NAME SOURCES ... [PUBLIC_DEPS ...] [PRIVATE_DEPS ...])
-#   One static library per module folder, target aavio_<NAME>, alias aavio::<NAME>.
+#   One static library per module folder, target aavio_<NAME>, alias aavio::<NAME>; installed
+#   and exported as aavio::<NAME> (cmake/aavioConfig.cmake.in).
 # aavio_add_test(NAME SOURCES ... DEPS ... [LABELS ...] [FIXTURES name])
 #   One GoogleTest executable per module; every TEST becomes a CTest test.
 
@@ -33,10 +34,14 @@ function(aavio_add_library name)
   cmake_parse_arguments(ARG "" "" "SOURCES;PUBLIC_DEPS;PRIVATE_DEPS" ${ARGN})
   add_library(aavio_${name} STATIC ${ARG_SOURCES})
   add_library(aavio::${name} ALIAS aavio_${name})
-  target_include_directories(aavio_${name} PUBLIC ${PROJECT_SOURCE_DIR})
+  set_target_properties(aavio_${name} PROPERTIES EXPORT_NAME ${name})
+  target_include_directories(aavio_${name} PUBLIC $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}>
+                                                  $<INSTALL_INTERFACE:include>)
   target_compile_features(aavio_${name} PUBLIC cxx_std_20)
   target_link_libraries(aavio_${name} PUBLIC ${ARG_PUBLIC_DEPS} PRIVATE ${ARG_PRIVATE_DEPS})
   aavio_set_warnings(aavio_${name})
+  install(TARGETS aavio_${name} EXPORT aavioTargets ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
+  set_property(GLOBAL APPEND PROPERTY AAVIO_LIBRARIES aavio_${name})
 endfunction()
 
 function(aavio_add_test name)
