@@ -7,6 +7,7 @@
 // SEQUENCE: a sequence.yaml (or a DSEC folder). Without --real-time the poses are those of
 // `aavio run SEQUENCE`, bit for bit. With --real-time the packets arrive at the pace of their
 // timestamps, as from a live sensor, and the odometry sheds ticks when it falls behind.
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <string>
@@ -50,7 +51,9 @@ Status Stream(const std::string& path, bool real_time, const std::string& out) {
     }
   };
 
-  // The driver side: packets of 1 ms, each stream complete up to the packet's end.
+  // The driver side: packets of 1 ms, each stream complete up to the packet's end. (To end
+  // exactly where `aavio run` ends, at the newest stamp, the last packet is cut there.)
+  const TimeNs end_ns = (*reader)->end_ns();
   const auto wall_start = std::chrono::steady_clock::now();
   io::SensorPacket packet;
   for (;;) {

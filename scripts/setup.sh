@@ -20,13 +20,14 @@ for arg in "$@"; do
   esac
 done
 
-# Build tools, libraries (design.md §3) and the independent fixture writers the tests run with
-# /usr/bin/python3 (formats.md §6).
+# Build tools, libraries (design.md §3), the Python module's pybind11 and pytest, and the
+# independent fixture writers the tests run with /usr/bin/python3 (formats.md §6).
 packages=(
   build-essential cmake pkgconf git clang-format
   libeigen3-dev libopencv-dev libyaml-cpp-dev libcli11-dev nlohmann-json3-dev libtbb-dev
   libhdf5-dev hdf5-filter-plugin-blosc-serial hdf5-tools liblz4-dev libzstd-dev libbz2-dev libsqlite3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  python3-dev pybind11-dev python3-pytest
   python3 python3-yaml python3-numpy python3-h5py python3-hdf5plugin python3-matplotlib
   python3-rosbag python3-genpy python3-genmsg
 )

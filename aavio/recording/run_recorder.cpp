@@ -31,18 +31,6 @@ std::pair<double, double> MemoryMb() {
   return {rss, peak};
 }
 
-const char* StatusName(tracking::TrackingStatus s) {
-  switch (s) {
-    case tracking::TrackingStatus::kOk:
-      return "ok";
-    case tracking::TrackingStatus::kLost:
-      return "lost";
-    case tracking::TrackingStatus::kNoMap:
-      return "no_map";
-  }
-  return "?";
-}
-
 // The files a run writes, removed before a new run writes into the same folder.
 constexpr const char* kRunFiles[] = {"stamped_traj_estimate.txt", "summary.json", "timings.csv",
                                      "config.yaml", "map.ply"};
@@ -150,7 +138,7 @@ Status RunRecorder::AddConfirmedMap(const mapping::LocalMap& map,
 Status RunRecorder::AddTick(const pipeline::OdometryTick& t) {
   AddRepresentation(t.t_ns, t.representation);
   trajectory_.push_back({t.t_ns, t.T_world_cam});
-  status_counts_[StatusName(t.status)]++;
+  status_counts_[tracking::TrackingStatusName(t.status)]++;
   if (t.status == tracking::TrackingStatus::kLost)
     lost_reasons_[tracking::LostReasonName(t.lost_reason)]++;
   if (t.status != tracking::TrackingStatus::kNoMap) {
@@ -181,9 +169,9 @@ Status RunRecorder::AddTick(const pipeline::OdometryTick& t) {
   }
   csv_ << StrFormat(
       "%.6f,%s,%.4f,%.4f,%.4f,%.4f,%d,%.4f,%zu,%s,%lld\n", NsToSeconds(t.t_ns),
-      StatusName(t.status), t.representation.time_surface_ms, t.representation.aa_ms,
-      t.representation.sampling_ms, t.tracking_ms, t.registration_iterations, mapping_ms,
-      t.map ? t.map->points.size() : 0,
+      tracking::TrackingStatusName(t.status), t.representation.time_surface_ms,
+      t.representation.aa_ms, t.representation.sampling_ms, t.tracking_ms,
+      t.registration_iterations, mapping_ms, t.map ? t.map->points.size() : 0,
       t.status == tracking::TrackingStatus::kLost ? tracking::LostReasonName(t.lost_reason) : "",
       static_cast<long long>(events_since_tick_));
   events_since_tick_ = 0;

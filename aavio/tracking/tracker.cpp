@@ -21,6 +21,18 @@ double MsSince(Clock::time_point t) {
 }
 }  // namespace
 
+const char* TrackingStatusName(TrackingStatus status) {
+  switch (status) {
+    case TrackingStatus::kOk:
+      return "ok";
+    case TrackingStatus::kLost:
+      return "lost";
+    case TrackingStatus::kNoMap:
+      return "no_map";
+  }
+  return "?";
+}
+
 const char* LostReasonName(LostReason reason) {
   switch (reason) {
     case LostReason::kNone:

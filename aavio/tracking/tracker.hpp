@@ -30,6 +30,8 @@ enum class LostReason {
   kTranslationJump,  ///< ... or by more than max_correction_m
 };
 const char* LostReasonName(LostReason reason);
+/// "ok", "lost" or "no_map" (summary.json, timings.csv, the Python module).
+const char* TrackingStatusName(TrackingStatus status);
 
 /// What tracking registers against: map points in the world, and its reference pose.
 struct TrackingMap {
