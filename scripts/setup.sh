@@ -5,6 +5,8 @@
 #
 #   scripts/setup.sh              install dependencies and build (Release)
 #   scripts/setup.sh --deps-only  only install dependencies
+#   scripts/setup.sh --ros        also Debian's ROS1 (roscpp, tf2, rosbag, rospy): builds
+#                                 aavio_ros_node and runs its end-to-end test (docs/ros.md)
 #   BUILD_DIR=... BUILD_TYPE=Debug CMAKE_ARGS="-DAAVIO_SANITIZE=ON" scripts/setup.sh
 set -euo pipefail
 
@@ -12,10 +14,12 @@ repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build_dir=${BUILD_DIR:-$repo/build}
 build_type=${BUILD_TYPE:-Release}
 deps_only=false
+ros=false
 for arg in "$@"; do
   case "$arg" in
     --deps-only) deps_only=true ;;
-    -h|--help) sed -n '2,10p' "$0"; exit 0 ;;
+    --ros) ros=true ;;
+    -h|--help) sed -n '2,12p' "$0"; exit 0 ;;
     *) echo "setup.sh: unknown argument '$arg' (try --help)" >&2; exit 2 ;;
   esac
 done
@@ -31,6 +35,15 @@ packages=(
   python3 python3-yaml python3-numpy python3-h5py python3-hdf5plugin python3-matplotlib
   python3-rosbag python3-genpy python3-genmsg
 )
+# ROS1 as Debian packages it (Noetic-era 1.15/1.16): the node's libraries, roscore, rosbag,
+# and rospy with the message modules the end-to-end test's listener imports.
+if $ros; then
+  packages+=(
+    libroscpp-dev libtopic-tools-dev libtf2-ros-dev libsensor-msgs-dev libnav-msgs-dev
+    ros-core librosbag-dev python3-rosbag python3-rospy python3-nav-msgs python3-geometry-msgs
+    python3-std-msgs iproute2
+  )
+fi
 
 missing=()
 for p in "${packages[@]}"; do
