@@ -40,7 +40,8 @@ Status Stream(const std::string& path, bool real_time, const std::string& out) {
   if (!reader) return reader.status();
 
   Expected<std::unique_ptr<pipeline::LiveOdometry>> live = pipeline::LiveOdometry::Create(
-      calibration->rig, *config, (*reader)->start_ns(), {.real_time = real_time});
+      calibration->rig, *config, (*reader)->start_ns(),
+      {.real_time = real_time, .wait_for_imu = (*reader)->imu() != nullptr});
   if (!live) return live.status();
   std::vector<geometry::StampedPose> poses;
   (*live)->on_tick = [&](const pipeline::OdometryTick& tick) {

@@ -149,7 +149,9 @@ Trajectory Run(const std::string& sequence_path, const std::string& calibration,
   const TimeNs begin = reader->start_ns() + SecondsToNs(start_s);
   const TimeNs end = duration_s ? begin + SecondsToNs(*duration_s) : reader->end_ns();
   if (start_s > 0.0) Check(reader->Seek(begin));
-  PyOdometry odometry(description.calibration, begin, preset, config_files, set, false, 0.05, true);
+  // A sequence without an IMU stream: the ticks do not wait for one.
+  PyOdometry odometry(description.calibration, begin, preset, config_files, set, false, 0.05,
+                      description.imu.has_value());
   // As `aavio run` feeds the odometry: the reader's packets in order.
   Status status = Status::Ok();
   {

@@ -45,7 +45,7 @@ struct LiveOptions {
   /// Real time: the most data time that may wait to be processed before ticks are skipped [s].
   double max_lag_s = 0.05;
   /// Wait for the IMU stream too before running a tick (false: a rig without an IMU; samples
-  /// pushed anyway are still used).
+  /// pushed anyway are still used, but then the output depends on when they arrive).
   bool wait_for_imu = true;
 
   Status Validate() const;
@@ -85,7 +85,8 @@ class LiveOdometry {
   /// The next IMU samples (in time order).
   Status PushImu(std::span<const imu::ImuSample> samples);
   /// End of input: runs the ticks due up to `end_ns` (default: just past the newest data of any
-  /// stream) with what has arrived, and waits for them. No Push after it.
+  /// stream) with what has arrived, and waits for them. Call it once the producers have
+  /// stopped; no Push after it.
   Status Finish(std::optional<TimeNs> end_ns = std::nullopt);
 
   LiveStats stats() const;
