@@ -1,5 +1,6 @@
 #pragma once
-// The `aavio` Python module (pybind11): shared conversions and one Bind* per file.
+// The `aavio` Python module (pybind11): shared conversions (conversions.cpp) and one Bind* per
+// file; module.cpp defines the module.
 //   sequence_bindings.cpp  open_sequence, Sequence, packets; events and IMU as numpy arrays
 //   odometry_bindings.cpp  Odometry (LiveOdometry from Python), run
 //   results_bindings.cpp   Trajectory, read_trajectory, evaluate, load_run, simulate
