@@ -8,6 +8,7 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
+#include <span>
 #include <string>
 #include <vector>
 
@@ -41,8 +42,9 @@ T Unwrap(Expected<T> value) {
 
 py::array_t<events::Event> EventArray(const std::vector<events::Event>& events);
 py::array_t<ImuRecord> ImuArray(const std::vector<imu::ImuSample>& samples);
-/// A 1-D array of the event dtype (C-contiguous), as a span over its memory.
-std::vector<events::Event> EventsOf(const py::array_t<events::Event, py::array::c_style>& a);
+/// A 1-D array of the event dtype (C-contiguous), as a span over its memory (valid while the
+/// array is).
+std::span<const events::Event> EventsOf(const py::array_t<events::Event, py::array::c_style>& a);
 std::vector<imu::ImuSample> ImuOf(const py::array_t<ImuRecord, py::array::c_style>& a);
 
 /// A trajectory as Python sees it: times and poses, with a tracking status per pose when it

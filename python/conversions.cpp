@@ -41,9 +41,10 @@ py::array_t<ImuRecord> ImuArray(const std::vector<imu::ImuSample>& samples) {
   return a;
 }
 
-std::vector<events::Event> EventsOf(const py::array_t<events::Event, py::array::c_style>& a) {
+std::span<const events::Event> EventsOf(
+    const py::array_t<events::Event, py::array::c_style>& a) {
   if (a.ndim() != 1) throw py::value_error("events: expected a 1-D array of aavio.EVENT_DTYPE");
-  return std::vector<events::Event>(a.data(), a.data() + a.size());
+  return {a.data(), static_cast<std::size_t>(a.size())};
 }
 
 std::vector<imu::ImuSample> ImuOf(const py::array_t<ImuRecord, py::array::c_style>& a) {

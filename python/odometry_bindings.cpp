@@ -56,12 +56,12 @@ class PyOdometry {
     if (camera != "left" && camera != "right") {
       throw py::value_error("camera must be 'left' or 'right', not '" + camera + "'");
     }
-    const std::vector<events::Event> copy = EventsOf(events);
+    const std::span<const events::Event> view = EventsOf(events);  // `events` outlives the call
     Status status;
     {
       py::gil_scoped_release release;
       status = live_->PushEvents(camera == "left" ? events::Camera::kLeft : events::Camera::kRight,
-                                 copy, complete_until_ns);
+                                 view, complete_until_ns);
     }
     Check(status);
   }

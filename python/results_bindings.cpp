@@ -11,6 +11,7 @@
 #include "aavio/io/ply.hpp"
 #include "aavio/io/trajectory_io.hpp"
 #include "aavio/recording/run_evaluation.hpp"
+#include "aavio/recording/run_recorder.hpp"
 #include "aavio/sim/simulator.hpp"
 #include "bindings.hpp"
 
@@ -78,19 +79,19 @@ std::string ReadText(const std::filesystem::path& path) {
 py::dict LoadRun(const std::string& folder) {
   namespace fs = std::filesystem;
   const fs::path dir(folder);
-  const fs::path summary = dir / "summary.json";
+  const fs::path summary = dir / recording::run_files::kSummary;
   if (!fs::exists(summary)) {
     Raise(NotFound(folder + ": no summary.json; is it the --out folder of `aavio run`?"));
   }
   py::dict run;
   run["summary"] = py::module_::import("json").attr("loads")(ReadText(summary));
-  run["config"] = ReadText(dir / "config.yaml");
-  const fs::path trajectory = dir / "stamped_traj_estimate.txt";
+  run["config"] = ReadText(dir / recording::run_files::kConfig);
+  const fs::path trajectory = dir / recording::run_files::kTrajectory;
   run["trajectory"] =
       fs::exists(trajectory)
           ? py::cast(Trajectory{Unwrap(io::ReadTumTrajectory(trajectory.string())), {}})
           : py::none();
-  const fs::path ply = dir / "map.ply";
+  const fs::path ply = dir / recording::run_files::kCloud;
   if (fs::exists(ply)) {
     const io::ColouredCloud cloud = Unwrap(io::ReadPly(ply.string()));
     py::array_t<float> points({static_cast<py::ssize_t>(cloud.points.size()), py::ssize_t{3}});
@@ -109,8 +110,9 @@ py::dict LoadRun(const std::string& folder) {
     run["map_points"] = py::none();
     run["map_colours"] = py::none();
   }
-  run["depth_dir"] =
-      fs::exists(dir / "depth") ? py::object(py::str((dir / "depth").string())) : py::none();
+  run["depth_dir"] = fs::exists(dir / recording::run_files::kDepthDir)
+                         ? py::object(py::str((dir / recording::run_files::kDepthDir).string()))
+                         : py::none();
   return run;
 }
 

@@ -52,6 +52,7 @@ OdometryConfig WithRealTime(OdometryConfig config, bool real_time) {
 LiveOdometry::LiveOdometry(const geometry::StereoRig& rig, const OdometryConfig& config,
                            TimeNs start_ns, LiveOptions options)
     : options_(options),
+      start_ns_(start_ns),
       odometry_(rig, WithRealTime(config, options.real_time), start_ns),
       events_watermark_ns_{start_ns, start_ns},
       imu_watermark_ns_(start_ns),
@@ -94,8 +95,10 @@ Status LiveOdometry::PushEvents(events::Camera camera, std::span<const events::E
     if (e.t_ns < watermark) {
       return InvalidArgument(StrFormat(
           "LiveOdometry::PushEvents: %s event at t = %lld ns comes after t = %lld ns; push each "
-          "camera's events in time order, and none older than a time declared complete",
-          CameraName(camera), static_cast<long long>(e.t_ns), static_cast<long long>(watermark)));
+          "camera's events in time order, none before the start (t = %lld ns) and none older "
+          "than a time declared complete",
+          CameraName(camera), static_cast<long long>(e.t_ns), static_cast<long long>(watermark),
+          static_cast<long long>(start_ns_)));
     }
     watermark = e.t_ns;
   }
@@ -129,8 +132,9 @@ Status LiveOdometry::PushImu(std::span<const imu::ImuSample> samples) {
     if (s.t_ns < watermark) {
       return InvalidArgument(StrFormat(
           "LiveOdometry::PushImu: IMU sample at t = %lld ns comes after t = %lld ns; push the "
-          "samples in time order",
-          static_cast<long long>(s.t_ns), static_cast<long long>(watermark)));
+          "samples in time order, none before the start (t = %lld ns)",
+          static_cast<long long>(s.t_ns), static_cast<long long>(watermark),
+          static_cast<long long>(start_ns_)));
     }
     watermark = s.t_ns;
   }

@@ -102,6 +102,7 @@ class LiveOdometry {
   void WorkerLoop();
 
   LiveOptions options_;
+  TimeNs start_ns_;
   Odometry odometry_;
   mutable std::mutex mutex_;
   std::condition_variable data_ready_;

@@ -32,8 +32,8 @@ std::pair<double, double> MemoryMb() {
 }
 
 // The files a run writes, removed before a new run writes into the same folder.
-constexpr const char* kRunFiles[] = {"stamped_traj_estimate.txt", "summary.json", "timings.csv",
-                                     "config.yaml", "map.ply"};
+constexpr const char* kRunFiles[] = {run_files::kTrajectory, run_files::kSummary,
+                                     run_files::kTimings, run_files::kConfig, run_files::kCloud};
 
 }  // namespace
 
@@ -64,7 +64,8 @@ Expected<std::unique_ptr<RunRecorder>> RunRecorder::Open(RunRecorderOptions opti
     fs::remove(out / file, ec);
     if (ec) return IoError((out / file).string() + ": cannot remove an earlier run's file");
   }
-  Expected<io::DepthFolderWriter> depth = io::DepthFolderWriter::Create((out / "depth").string());
+  Expected<io::DepthFolderWriter> depth =
+      io::DepthFolderWriter::Create((out / run_files::kDepthDir).string());
   if (!depth) return depth.status();
   std::unique_ptr<RunRecorder> recorder(
       new RunRecorder(std::move(options), rig, config, std::move(*depth)));
@@ -163,7 +164,7 @@ Status RunRecorder::AddTick(const pipeline::OdometryTick& t) {
   if (t.map && t.map->confirmed)  // provisional maps are for tracking only
     AAVIO_RETURN_IF_ERROR(AddConfirmedMap(*t.map, t.map_observation.get(), /*score_written=*/true));
   if (!csv_.is_open()) {
-    csv_.open(fs::path(options_.out_dir) / "timings.csv");
+    csv_.open(fs::path(options_.out_dir) / run_files::kTimings);
     csv_ << "t_s,status,time_surface_ms,aa_ms,sampling_ms,tracking_ms,iterations,mapping_ms,"
             "map_points,lost_reason,events\n";
   }
@@ -226,16 +227,17 @@ Expected<RunRecord> RunRecorder::Finish(bool interrupted, TimeNs end_ns,
   if (csv_.is_open()) csv_.close();
   if (!trajectory_.empty()) {
     AAVIO_RETURN_IF_ERROR(
-        io::WriteTumTrajectory((out / "stamped_traj_estimate.txt").string(), trajectory_));
+        io::WriteTumTrajectory((out / run_files::kTrajectory).string(), trajectory_));
   }
-  AAVIO_RETURN_IF_ERROR(io::WriteTextFile((out / "config.yaml").string(), options_.config_yaml));
+  AAVIO_RETURN_IF_ERROR(
+      io::WriteTextFile((out / run_files::kConfig).string(), options_.config_yaml));
   std::vector<io::Rgb> rgb;
   rgb.reserve(cloud_.points().size());
   for (const float rho : cloud_.inv_depth()) {
     const cv::Vec3b c = colours_(static_cast<double>(rho));
     rgb.push_back({c[2], c[1], c[0]});
   }
-  AAVIO_RETURN_IF_ERROR(io::WritePly((out / "map.ply").string(), cloud_.points(), rgb,
+  AAVIO_RETURN_IF_ERROR(io::WritePly((out / run_files::kCloud).string(), cloud_.points(), rgb,
                                      "aavio global map (world frame, metres)"));
   AAVIO_RETURN_IF_ERROR(depth_writer_.Finish());
 
@@ -301,7 +303,7 @@ Expected<RunRecord> RunRecorder::Finish(bool interrupted, TimeNs end_ns,
   if (record.depth && record.sample_ceiling)
     s["depth"]["sample_ceiling"] = CoverageJson(*record.sample_ceiling);
   s.update(extra);
-  AAVIO_RETURN_IF_ERROR(io::WriteTextFile((out / "summary.json").string(), s.dump(2) + "\n"));
+  AAVIO_RETURN_IF_ERROR(io::WriteTextFile((out / run_files::kSummary).string(), s.dump(2) + "\n"));
   return record;
 }
 

@@ -30,6 +30,17 @@
 
 namespace aavio::recording {
 
+/// The names of what a run folder holds (written here; read by `aavio eval --run`, `aavio
+/// report` and the Python module's load_run).
+namespace run_files {
+inline constexpr char kTrajectory[] = "stamped_traj_estimate.txt";
+inline constexpr char kSummary[] = "summary.json";
+inline constexpr char kTimings[] = "timings.csv";
+inline constexpr char kConfig[] = "config.yaml";
+inline constexpr char kCloud[] = "map.ply";
+inline constexpr char kDepthDir[] = "depth";
+}  // namespace run_files
+
 struct RunRecorderOptions {
   std::string out_dir;
   std::string mode = "full";  ///< summary.json "mode"

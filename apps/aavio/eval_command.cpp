@@ -11,6 +11,7 @@
 #include "aavio/io/trajectory_io.hpp"
 #include "aavio/mapping/rectified_stereo.hpp"
 #include "aavio/recording/run_evaluation.hpp"
+#include "aavio/recording/run_recorder.hpp"
 #include "cli.hpp"
 #include "sequence_opening.hpp"
 
@@ -41,7 +42,7 @@ struct EvalOptions {
 Expected<RunGroundTruth> RunSequence(const EvalOptions& options) {
   std::string sequence = options.sequence;
   if (sequence.empty()) {
-    const fs::path summary_path = fs::path(options.run) / "summary.json";
+    const fs::path summary_path = fs::path(options.run) / recording::run_files::kSummary;
     std::ifstream in(summary_path);
     if (!in) {
       return NotFound(summary_path.string() +
@@ -75,7 +76,7 @@ Status Evaluate(const EvalOptions& options, Context& ctx) {
     Expected<RunGroundTruth> t = RunSequence(options);
     if (!t) return t.status();
     truth = std::move(*t);
-    est_path = (fs::path(options.run) / "stamped_traj_estimate.txt").string();
+    est_path = (fs::path(options.run) / recording::run_files::kTrajectory).string();
     gt_path = truth->trajectory_path;
   }
   // A run on ground-truth poses (`aavio run --gt-poses`) has maps but no trajectory of its own.
@@ -92,7 +93,7 @@ Status Evaluate(const EvalOptions& options, Context& ctx) {
   }
 
   std::optional<eval::DepthErrorSummary> depth;
-  const fs::path run_depth = fs::path(options.run) / "depth";
+  const fs::path run_depth = fs::path(options.run) / recording::run_files::kDepthDir;
   if (truth && !truth->depth_dir.empty() && fs::exists(run_depth / "timestamps.txt")) {
     Expected<eval::DepthErrorAccumulator> d = EvaluateRunDepth(run_depth.string(), *truth, *gt);
     if (!d) return d.status();

@@ -14,6 +14,7 @@
 #include "aavio/io/config_yaml.hpp"
 #include "aavio/io/trajectory_io.hpp"
 #include "aavio/recording/run_evaluation.hpp"
+#include "aavio/recording/run_recorder.hpp"
 #include "cli.hpp"
 #include "report/plot_report_script.hpp"
 #include "sequence_opening.hpp"
@@ -90,7 +91,7 @@ Expected<nlohmann::json> TrajectoryPlots(const std::string& estimate_path,
 
 // Everything the plots of one run need, as JSON.
 Expected<nlohmann::json> GatherRun(const std::string& dir, const std::string& name, Context& ctx) {
-  const fs::path summary_path = fs::path(dir) / "summary.json";
+  const fs::path summary_path = fs::path(dir) / recording::run_files::kSummary;
   std::ifstream in(summary_path);
   if (!in)
     return NotFound(summary_path.string() + ": not found; --run takes a folder of `aavio run`");
@@ -104,7 +105,7 @@ Expected<nlohmann::json> GatherRun(const std::string& dir, const std::string& na
   run["dir"] = fs::absolute(dir).string();
   const std::string sequence = run["summary"].value("sequence", "");
   Expected<RunGroundTruth> truth = LoadRunGroundTruth(sequence);
-  const fs::path estimate_path = fs::path(dir) / "stamped_traj_estimate.txt";
+  const fs::path estimate_path = fs::path(dir) / recording::run_files::kTrajectory;
   if (!truth) {
     ctx.err << "aavio report: " << dir << ": no ground truth to evaluate against ("
             << truth.status().message() << "); plotting timings only\n";
@@ -118,7 +119,7 @@ Expected<nlohmann::json> GatherRun(const std::string& dir, const std::string& na
     if (!ev) return ev.status();
     run["evaluation"] = *ev;
   }
-  const fs::path depth_dir = fs::path(dir) / "depth";
+  const fs::path depth_dir = fs::path(dir) / recording::run_files::kDepthDir;
   if (!truth->depth_dir.empty() && fs::exists(depth_dir / "timestamps.txt")) {
     Expected<eval::DepthErrorAccumulator> depth = EvaluateRunDepth(depth_dir.string(), *truth, *gt);
     if (!depth) return depth.status();
