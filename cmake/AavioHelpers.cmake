@@ -28,6 +28,10 @@ function(aavio_set_warnings target)
                            -fno-sanitize-recover=undefined)
     target_link_options(${target} PRIVATE -fsanitize=address,undefined)
   endif()
+  # Coverage instrumentation for the fuzz targets (they link libFuzzer itself).
+  if(AAVIO_FUZZ)
+    target_compile_options(${target} PRIVATE -fsanitize=fuzzer-no-link)
+  endif()
 endfunction()
 
 function(aavio_add_library name)

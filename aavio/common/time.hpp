@@ -4,6 +4,7 @@
 /// timestamps are parsed and printed exactly, digit by digit, never through a double.
 
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <string_view>
 
@@ -30,6 +31,13 @@ constexpr TimeNs UsToNs(std::int64_t t_us) {
 constexpr TimeNs MsToNs(double t_ms) {
   return static_cast<TimeNs>(t_ms * 1e6 + (t_ms >= 0 ? 0.5 : -0.5));
 }
+/// a + b, clamped to TimeNs's range (reads "until the end of time" add windows to INT64_MAX).
+constexpr TimeNs SaturatingAdd(TimeNs a, TimeNs b) {
+  TimeNs sum = 0;
+  if (!__builtin_add_overflow(a, b, &sum)) return sum;
+  return b > 0 ? std::numeric_limits<TimeNs>::max() : std::numeric_limits<TimeNs>::min();
+}
+
 /// Rounds to the nearest nanosecond. Exact only while |t| < ~9e6 s (a double's 53 bits); for
 /// absolute dataset stamps parse text with ParseSecondsToNs instead.
 constexpr TimeNs SecondsToNs(double t_s) {

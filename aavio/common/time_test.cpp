@@ -54,5 +54,15 @@ TEST(Time, Conversions) {
   EXPECT_DOUBLE_EQ(NsToMs(2'500'000), 2.5);
 }
 
+TEST(Time, SaturatingAddClampsAtTheEndsOfTime) {
+  constexpr TimeNs kMax = std::numeric_limits<TimeNs>::max();
+  constexpr TimeNs kMin = std::numeric_limits<TimeNs>::min();
+  EXPECT_EQ(SaturatingAdd(5, 7), 12);
+  EXPECT_EQ(SaturatingAdd(kMax, kNsPerMs), kMax);
+  EXPECT_EQ(SaturatingAdd(kMax - 3, 2), kMax - 1);
+  EXPECT_EQ(SaturatingAdd(kMin, -1), kMin);
+  EXPECT_EQ(SaturatingAdd(kMin, kMax), -1);
+}
+
 }  // namespace
 }  // namespace aavio

@@ -176,7 +176,7 @@ Expected<std::unique_ptr<DsecH5EventStream>> DsecH5EventStream::Open(const std::
                         ")");
     }
     n = static_cast<std::int64_t>(dims[0]);
-    AAVIO_RETURN_IF_ERROR(h5::CheckFilters(s->datasets[i].get(), path, kFields[i]));
+    AAVIO_RETURN_IF_ERROR(h5::CheckReadable(s->datasets[i].get(), path, kFields[i]));
   }
   s->count = static_cast<std::uint64_t>(n);
 
@@ -186,6 +186,7 @@ Expected<std::unique_ptr<DsecH5EventStream>> DsecH5EventStream::Open(const std::
     if (H5Sget_simple_extent_npoints(space.get()) != 1) {
       return ParseError(path + ": /t_offset must hold exactly one number (µs)");
     }
+    AAVIO_RETURN_IF_ERROR(h5::CheckReadable(d.get(), path, "/t_offset"));
     if (H5Dread(d.get(), H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, &s->t_offset_us) < 0) {
       return ParseError(path + ": cannot read /t_offset (" + h5::TakeErrorMessage() + ")");
     }
@@ -197,7 +198,7 @@ Expected<std::unique_ptr<DsecH5EventStream>> DsecH5EventStream::Open(const std::
     h5::Handle space(H5Dget_space(d.get()), H5Sclose);
     const hssize_t m = H5Sget_simple_extent_npoints(space.get());
     s->ms_to_idx.resize(m > 0 ? static_cast<std::size_t>(m) : 0);
-    if (h5::CheckFilters(d.get(), path, "/ms_to_idx").ok() && m > 0 &&
+    if (h5::CheckReadable(d.get(), path, "/ms_to_idx").ok() && m > 0 &&
         H5Dread(d.get(), H5T_NATIVE_UINT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, s->ms_to_idx.data()) >=
             0) {
       const bool monotone = std::is_sorted(s->ms_to_idx.begin(), s->ms_to_idx.end()) &&
@@ -297,7 +298,7 @@ Expected<cv::Mat> ReadDsecRectifyMap(const std::string& path) {
     return ParseError(path + ": no /rectify_map dataset (expected float32 (height, width, 2))");
   }
   h5::Handle d(H5Dopen2(file.get(), "/rectify_map", H5P_DEFAULT), H5Dclose);
-  AAVIO_RETURN_IF_ERROR(h5::CheckFilters(d.get(), path, "/rectify_map"));
+  AAVIO_RETURN_IF_ERROR(h5::CheckReadable(d.get(), path, "/rectify_map"));
   h5::Handle space(H5Dget_space(d.get()), H5Sclose);
   hsize_t dims[3] = {0, 0, 0};
   if (H5Sget_simple_extent_ndims(space.get()) != 3 ||

@@ -146,6 +146,18 @@ TEST(DsecH5, MissingBloscPluginNamesTheDebianPackage) {
   EXPECT_NE(output.find("hdf5-filter-plugin-blosc-serial"), std::string::npos) << output;
 }
 
+TEST(DsecH5, AbsurdElementTypesAreACorruptFileNotAnOverflow) {
+  // Found by fuzzing (fuzz/corpus/dsec_h5 keeps it): /events/x declares 33554434-byte integers,
+  // which HDF5 1.10 would convert by reading past its buffers.
+  auto s = DsecH5EventStream::Open(
+      AAVIO_SOURCE_DIR "/fuzz/corpus/dsec_h5/regression_huge_element.h5", {});
+  ASSERT_FALSE(s.ok());
+  EXPECT_NE(s.status().message().find(
+                "/events/x holds elements of 33554434 bytes, not numbers of 1 to 8 bytes"),
+            std::string::npos)
+      << s.status().message();
+}
+
 TEST(DsecH5, ReadsRectifyMap) {
   Expected<cv::Mat> map = ReadDsecRectifyMap(Fixture("rectify_map.h5"));
   ASSERT_TRUE(map.ok()) << map.status().message();

@@ -50,9 +50,11 @@ void SilenceErrorPrinting();
 /// The most specific message on HDF5's current error stack ("" if empty), then clears it.
 std::string TakeErrorMessage();
 
-/// Ok if every filter of the dataset is available; otherwise an error that names the filter and
-/// the Debian package providing it (blosc: hdf5-filter-plugin-blosc-serial).
-Status CheckFilters(hid_t dataset, const std::string& file, const std::string& name);
+/// Ok if the dataset can be read: every filter of it is available (otherwise an error that names
+/// the filter and the Debian package providing it; blosc: hdf5-filter-plugin-blosc-serial), its
+/// elements are numbers of 1 to 8 bytes, and a compact dataset stores the bytes its shape needs
+/// (a corrupt file otherwise).
+Status CheckReadable(hid_t dataset, const std::string& file, const std::string& name);
 
 bool LinkExists(hid_t file, const char* path);
 

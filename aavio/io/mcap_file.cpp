@@ -142,14 +142,18 @@ Status McapReader::ReadChunk(std::int64_t at, std::uint64_t length) {
       !f.Int(&records) || f.left() < records)
     return Fail(at, "truncated Chunk record");
   if (size > kMaxRecord) return Fail(at, "a chunk larger than 4 GiB: a corrupt file");
-  chunk_.resize(static_cast<std::size_t>(size));
+  if (compression.empty() && records != size) {
+    return Fail(at, "an uncompressed chunk whose sizes disagree");
+  }
   if (compression.empty()) {
-    if (records != size) return Fail(at, "an uncompressed chunk whose sizes disagree");
-    std::memcpy(chunk_.data(), f.here(), static_cast<std::size_t>(size));
+    chunk_.resize(static_cast<std::size_t>(size));
+    // An empty chunk has nothing to copy (and memcpy must not see its null data()).
+    if (size > 0) std::memcpy(chunk_.data(), f.here(), static_cast<std::size_t>(size));
   } else if (compression == "lz4" || compression == "zstd") {
     const std::span<const unsigned char> packed(f.here(), static_cast<std::size_t>(records));
-    const Status s = compression == "lz4" ? DecompressLz4Frame(packed, chunk_.size(), &chunk_)
-                                          : DecompressZstd(packed, chunk_.size(), &chunk_);
+    const auto stated = static_cast<std::size_t>(size);
+    const Status s = compression == "lz4" ? DecompressLz4Frame(packed, stated, &chunk_)
+                                          : DecompressZstd(packed, stated, &chunk_);
     if (!s.ok()) return Fail(at, compression + " chunk: " + s.message());
   } else {
     return Fail(at, "chunk compression '" + compression + "' is not read (lz4, zstd or none)");

@@ -303,6 +303,15 @@ TEST(Ros2Bag, McapBagsOfLibcaerCmpPacketsInChunksOrAlone) {
   ASSERT_FALSE(c.ok());
   EXPECT_NE(c.status().message().find("chunk compression 'brotli' is not read"), std::string::npos)
       << c.status().message();
+
+  // An empty uncompressed chunk holds nothing (it once copied from a null pointer: found by
+  // fuzzing under UBSan).
+  McapWriter empty;
+  empty.Append(McapWriter::Schema(1, kPacket));
+  empty.Append(McapWriter::Channel(1, 1, "/event_camera/events"));
+  empty.Chunk({}, "");
+  empty.Append(McapWriter::Message(1, 30, EventPacket("libcaer_cmp", base, b)));
+  EXPECT_EQ(ReadAll(empty.Save("empty_chunk.mcap")).size(), 1u);
 }
 
 TEST(Ros2Bag, BadBagsAreClearErrors) {

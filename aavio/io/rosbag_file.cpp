@@ -249,14 +249,18 @@ Status BagFile::ReadChunk(std::size_t index,
   const std::uint64_t data_at = info.position + 8 + header_len;
   if (size > (1u << 30)) return Fail(where + ": implausible chunk size " + std::to_string(size));
 
-  chunk_.resize(size);
+  // Sizes are checked before anything is allocated for them.
+  if (data_at + data_len > file_size_)
+    return Fail(where + ": chunk data run past the end of the file");
   if (compression == "none") {
     if (data_len != size) return Fail(where + ": uncompressed chunk of the wrong size");
+    chunk_.resize(size);
     AAVIO_RETURN_IF_ERROR(ReadAt(data_at, chunk_.data(), size, where.c_str()));
   } else {
     compressed_.resize(data_len);
     AAVIO_RETURN_IF_ERROR(ReadAt(data_at, compressed_.data(), data_len, where.c_str()));
     if (compression == "bz2") {
+      chunk_.resize(size);
       unsigned int out_len = size;
       const int rc =
           BZ2_bzBuffToBuffDecompress(reinterpret_cast<char*>(chunk_.data()), &out_len,

@@ -91,7 +91,7 @@ class ReorderBuffer {
   /// Everything strictly older than t_end_ns is final once an element at or after
   /// t_end_ns + max_reorder_ns has been pushed (or the source is exhausted).
   bool CanRelease(TimeNs t_end_ns) const {
-    return has_newest_ && newest_ns_ >= t_end_ns + max_reorder_ns_;
+    return has_newest_ && newest_ns_ >= SaturatingAdd(t_end_ns, max_reorder_ns_);
   }
   /// Moves every held element with t < t_end_ns to `out`, in time order.
   void Release(TimeNs t_end_ns, std::vector<T>* out);

@@ -1,5 +1,6 @@
 #include "aavio/io/text_streams.hpp"
 
+#include <algorithm>
 #include <array>
 #include <charconv>
 #include <cmath>
@@ -48,7 +49,10 @@ class LineReader {
     path_ = path;
     file_ = std::fopen(path.c_str(), "rb");
     if (!file_) return NotFound(path + ": cannot open");
-    buffer_.resize(4 << 20);
+    // Blocks of 4 MB, or the whole file if smaller.
+    std::error_code ec;
+    const std::uintmax_t size = std::filesystem::file_size(path, ec);
+    buffer_.resize(ec ? kBlockBytes : std::clamp<std::size_t>(size + 1, 4096, kBlockBytes));
     begin_ = end_ = 0;
     line_ = 0;
     eof_ = false;
@@ -86,7 +90,17 @@ class LineReader {
       std::memmove(buffer_.data(), start, end_ - begin_);
       end_ -= begin_;
       begin_ = 0;
-      if (end_ == buffer_.size()) buffer_.resize(buffer_.size() * 2);  // a very long line
+      if (end_ == buffer_.size()) {
+        // A line longer than a block is no line of these formats (a binary file, say): it is
+        // returned whole, for the parser to refuse it with its line number.
+        if (buffer_.size() >= kBlockBytes) {
+          *line = std::string_view(buffer_.data(), end_);
+          begin_ = end_;
+          ++line_;
+          return true;
+        }
+        buffer_.resize(std::min(buffer_.size() * 2, kBlockBytes));
+      }
       const std::size_t n = std::fread(buffer_.data() + end_, 1, buffer_.size() - end_, file_);
       end_ += n;
       if (n == 0) eof_ = true;
@@ -96,6 +110,7 @@ class LineReader {
   std::FILE* file() const { return file_; }
 
  private:
+  static constexpr std::size_t kBlockBytes = 4 << 20;
   std::string path_;
   std::FILE* file_ = nullptr;
   std::vector<char> buffer_;
