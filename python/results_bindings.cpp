@@ -118,9 +118,10 @@ py::dict LoadRun(const std::string& folder) {
 
 std::string SimulateSequence(const std::string& out, const std::string& preset, std::uint64_t seed,
                              std::optional<double> duration_s, const std::string& trajectory,
-                             double start_s, const std::string& sensor) {
+                             double start_s, const std::string& sensor, bool overwrite) {
   sim::SimulationRequest request;
   request.out_dir = out;
+  request.overwrite = overwrite;
   request.preset = preset;
   request.seed = seed;
   request.duration_s = duration_s;
@@ -173,9 +174,10 @@ void BindResults(py::module_& m) {
         "map_points (N, 3) and map_colours, depth_dir.");
   m.def("simulate", &SimulateSequence, py::arg("out"), py::arg("preset") = "mini",
         py::arg("seed") = 1, py::arg("duration_s") = py::none(), py::arg("trajectory") = "",
-        py::arg("start_s") = 0.0, py::arg("sensor") = "typical",
+        py::arg("start_s") = 0.0, py::arg("sensor") = "typical", py::arg("overwrite") = false,
         "Simulates a sequence (as `aavio simulate`) into out; returns its sequence.yaml. "
-        "trajectory: a TUM file to follow (a twin of a recording).");
+        "trajectory: a TUM file to follow (a twin of a recording); overwrite: replace a "
+        "sequence already in out (else that is an error).");
 }
 
 }  // namespace aavio::python

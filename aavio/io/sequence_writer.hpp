@@ -17,6 +17,10 @@
 namespace aavio::io {
 
 enum class SequenceFormat { kDsecH5, kBag, kText };
+
+/// What a sequence folder written here holds, in any format (sequence.yaml included).
+inline constexpr const char* kSequenceOutputs[] = {"sequence.yaml", "events", "events.bag",
+                                                   "imu.txt", "groundtruth.txt"};
 /// "h5", "bag" or "txt".
 Expected<SequenceFormat> ParseSequenceFormat(const std::string& name);
 

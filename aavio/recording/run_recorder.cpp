@@ -6,6 +6,7 @@
 #include "aavio/common/format.hpp"
 #include "aavio/io/config_yaml.hpp"
 #include "aavio/io/ground_truth_depth.hpp"
+#include "aavio/io/output_folder.hpp"
 #include "aavio/io/ply.hpp"
 #include "aavio/io/trajectory_io.hpp"
 
@@ -31,9 +32,10 @@ std::pair<double, double> MemoryMb() {
   return {rss, peak};
 }
 
-// The files a run writes, removed before a new run writes into the same folder.
-constexpr const char* kRunFiles[] = {run_files::kTrajectory, run_files::kSummary,
-                                     run_files::kTimings, run_files::kConfig, run_files::kCloud};
+// What a run writes into its folder.
+constexpr const char* kRunOutputs[] = {run_files::kTrajectory, run_files::kSummary,
+                                       run_files::kTimings,    run_files::kConfig,
+                                       run_files::kCloud,      run_files::kDepthDir};
 
 }  // namespace
 
@@ -57,13 +59,8 @@ Expected<std::unique_ptr<RunRecorder>> RunRecorder::Open(RunRecorderOptions opti
                                                          const geometry::StereoRig& rig,
                                                          const pipeline::OdometryConfig& config) {
   const fs::path out(options.out_dir);
-  std::error_code ec;
-  fs::create_directories(out, ec);
-  if (ec) return IoError(options.out_dir + ": cannot create the folder (" + ec.message() + ")");
-  for (const char* file : kRunFiles) {
-    fs::remove(out / file, ec);
-    if (ec) return IoError((out / file).string() + ": cannot remove an earlier run's file");
-  }
+  AAVIO_RETURN_IF_ERROR(io::PrepareOutputFolder(
+      options.out_dir, {.outputs = kRunOutputs, .overwrite = options.overwrite}));
   Expected<io::DepthFolderWriter> depth =
       io::DepthFolderWriter::Create((out / run_files::kDepthDir).string());
   if (!depth) return depth.status();
@@ -103,8 +100,11 @@ void RunRecorder::AddRepresentation(TimeNs t_ns, const events::RepresentationTim
     timings_.Add("aa_map", t.aa_ms);
     timings_.Add("sampling", t.sampling_ms);
   }
-  if (ticks_ % 100 == 0)
-    rss_over_time_.push_back({NsToSeconds(t_ns - options_.begin_ns), MemoryMb().first});
+  // Every 100 ticks: [data s, resident MB, wall s], for memory growth and slowdown over a run.
+  if (ticks_ % 100 == 0) {
+    over_time_.push_back({NsToSeconds(t_ns - options_.begin_ns), MemoryMb().first,
+                          std::chrono::duration<double>(Clock::now() - wall_start_).count()});
+  }
 }
 
 void RunRecorder::AddCycleReport(const mapping::MappingCycleReport& r) {
@@ -289,8 +289,10 @@ Expected<RunRecord> RunRecorder::Finish(bool interrupted, TimeNs end_ns,
   s["map_points_global"] = cloud_.points().size();
   const auto [rss_mb, peak_mb] = MemoryMb();
   s["peak_rss_mb"] = peak_mb;
-  s["memory"] = {
-      {"peak_rss_mb", peak_mb}, {"final_rss_mb", rss_mb}, {"rss_mb_over_time", rss_over_time_}};
+  s["memory"] = {{"peak_rss_mb", peak_mb},
+                 {"final_rss_mb", rss_mb},
+                 {"over_time_columns", {"data_s", "rss_mb", "wall_s"}},
+                 {"over_time", over_time_}};
   for (const auto& [stage, st] : timings_.Summary()) {
     s["stages"][stage] = {{"median_ms", st.median_ms},
                           {"p95_ms", st.p95_ms},

@@ -43,6 +43,9 @@ inline constexpr char kDepthDir[] = "depth";
 
 struct RunRecorderOptions {
   std::string out_dir;
+  /// A folder holding an earlier run is refused unless this is set; then that run's files are
+  /// removed first (io::PrepareOutputFolder).
+  bool overwrite = false;
   std::string mode = "full";  ///< summary.json "mode"
   std::string sequence;       ///< summary.json "sequence": what `aavio eval --run` reopens
   std::string config_yaml;    ///< the effective configuration, written as config.yaml
@@ -133,7 +136,7 @@ class RunRecorder {
   std::string last_bootstrap_failure_;
   int confirmed_maps_ = 0;
   std::size_t confirmed_points_ = 0;
-  nlohmann::json rss_over_time_ = nlohmann::json::array();
+  nlohmann::json over_time_ = nlohmann::json::array();
 };
 
 }  // namespace aavio::recording

@@ -52,7 +52,7 @@ TEST(RunRecorder, OdometryRunWritesEverythingAndScoresDepthAsTheFilesScore) {
   const Mini& m = MiniSequence();
   ASSERT_TRUE(m.rig.has_value());
   const fs::path out = aavio::testing::ScratchDir() / "run";
-  // An earlier run's leftovers must not survive into this one.
+  // An earlier run in the folder is refused; replaced (none of its files left) with overwrite.
   fs::create_directories(out / "depth");
   aavio::testing::WriteFile(out / "depth" / "disparity_999999.png", "stale");
   aavio::testing::WriteFile(out / "stamped_traj_estimate.txt", "stale");
@@ -63,6 +63,9 @@ TEST(RunRecorder, OdometryRunWritesEverythingAndScoresDepthAsTheFilesScore) {
   options.sequence = m.description.origin;
   options.config_yaml = "# test\n";
   options.begin_ns = m.start_ns;
+  EXPECT_FALSE(RunRecorder::Open(options, *m.rig, config).ok());
+  EXPECT_TRUE(fs::exists(out / "stamped_traj_estimate.txt"));
+  options.overwrite = true;
   Expected<std::unique_ptr<RunRecorder>> recorder = RunRecorder::Open(options, *m.rig, config);
   ASSERT_TRUE(recorder.ok()) << recorder.status().message();
   EXPECT_FALSE(fs::exists(out / "stamped_traj_estimate.txt"));

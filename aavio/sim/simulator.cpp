@@ -13,6 +13,7 @@
 #include "aavio/common/format.hpp"
 #include "aavio/io/calibration.hpp"
 #include "aavio/io/config_yaml.hpp"
+#include "aavio/io/output_folder.hpp"
 #include "aavio/io/sequence.hpp"
 #include "aavio/io/sequence_writer.hpp"
 #include "aavio/io/trajectory_io.hpp"
@@ -31,6 +32,13 @@ namespace aavio::sim {
 namespace fs = std::filesystem;
 
 namespace {
+
+// What a simulated sequence folder holds: a sequence, its calibration(s), scene and previews.
+std::vector<const char*> SimulationOutputs() {
+  std::vector<const char*> names(std::begin(io::kSequenceOutputs), std::end(io::kSequenceOutputs));
+  names.insert(names.end(), {"calibration", "calibration_true", "scene.txt", "depth", "preview"});
+  return names;
+}
 
 Status WriteScene(const std::string& path, const Scene& scene) {
   std::string text =
@@ -119,9 +127,7 @@ Expected<SimulationReport> Simulate(const SimulationRequest& request,
                                     const std::function<void(double)>& progress) {
   const auto wall_start = std::chrono::steady_clock::now();
   if (request.out_dir.empty()) return InvalidArgument("an output folder is needed (--out)");
-  if (!io::ParseSequenceFormat(request.format).ok()) {
-    return InvalidArgument("--format must be h5, bag or txt, got '" + request.format + "'");
-  }
+  AAVIO_RETURN_IF_ERROR(request.Validate());
   Expected<SimulationWorld> built = BuildSimulationWorld(request);
   if (!built) return built.status();
   const SimulationWorld& world = *built;
@@ -130,6 +136,9 @@ Expected<SimulationReport> Simulate(const SimulationRequest& request,
   const MotionSpline& spline = world.spline;
 
   const fs::path out(request.out_dir);
+  const std::vector<const char*> outputs = SimulationOutputs();
+  AAVIO_RETURN_IF_ERROR(io::PrepareOutputFolder(
+      request.out_dir, {.outputs = outputs, .overwrite = request.overwrite}));
   std::error_code ec;
   fs::create_directories(out / "depth", ec);
   if (ec) return IoError(request.out_dir + ": cannot create the folder (" + ec.message() + ")");

@@ -153,8 +153,14 @@ TEST(Simulator, BadRequestsGiveClearErrors) {
             std::string::npos);
   request.preset = "mini";
   request.format = "csv";
-  EXPECT_NE(Simulate(request).status().message().find("--format must be h5, bag or txt"),
+  EXPECT_NE(Simulate(request).status().message().find("format = 'csv' must be h5, bag or txt"),
             std::string::npos);
+  request.format = "h5";
+  request.duration_s = -1.0;
+  EXPECT_NE(Simulate(request).status().message().find("duration_s = -1 must be in [0.001, 86400]"),
+            std::string::npos)
+      << Simulate(request).status().message();
+  request.duration_s.reset();
   request.format = "h5";
   request.trajectory = "/nonexistent/path.txt";
   EXPECT_NE(Simulate(request).status().message().find("/nonexistent/path.txt"), std::string::npos);

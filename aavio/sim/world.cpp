@@ -1,5 +1,6 @@
 #include "aavio/sim/world.hpp"
 
+#include "aavio/common/config_fields.hpp"
 #include "aavio/io/calibration.hpp"
 #include "aavio/io/trajectory_io.hpp"
 #include "aavio/sim/motions.hpp"
@@ -59,6 +60,16 @@ geometry::RigidTransform SceneFrame(const CameraPath& motion) {
 
 }  // namespace
 
+Status SimulationRequest::Validate() const {
+  constexpr double kDay_s = 86400.0;
+  FieldChecker check;
+  if (duration_s) check.InRange("duration_s", *duration_s, 1e-3, kDay_s);
+  check.InRange("start_s", start_s, 0.0, kDay_s * 365.0);
+  check.Require(format == "h5" || format == "bag" || format == "txt", "format",
+                "= '" + format + "' must be h5, bag or txt");
+  return check.status();
+}
+
 geometry::RigidTransform SimulationWorld::T_world_camera(int side, TimeNs t_ns) const {
   const geometry::RigidTransform T_rect_left(rig.R_rect_left_left(), Eigen::Vector3d::Zero());
   const geometry::RigidTransform T_world_left = spline.Pose(t_ns) * T_rect_left;
@@ -66,6 +77,7 @@ geometry::RigidTransform SimulationWorld::T_world_camera(int side, TimeNs t_ns) 
 }
 
 Expected<SimulationWorld> BuildSimulationWorld(const SimulationRequest& request) {
+  AAVIO_RETURN_IF_ERROR(request.Validate());
   Expected<SimulationPreset> preset = GetSimulationPreset(request.preset);
   if (!preset) return preset.status();
   Expected<SensorModel> sensor = MakeSensorModel(*preset, request.sensor, request.effects);

@@ -20,7 +20,8 @@ namespace aavio::sim {
 struct SimulationRequest {
   std::string preset = "mini";
   std::string out_dir;
-  std::string format = "h5";         ///< h5 | bag | txt
+  bool overwrite = false;     ///< replace an earlier sequence in out_dir (else it is an error)
+  std::string format = "h5";  ///< h5 | bag | txt
   std::optional<double> duration_s;  ///< default: the preset's (or the whole trajectory)
   double start_s = 0.0;              ///< offset into a recorded trajectory
   std::uint64_t seed = 1;
@@ -30,6 +31,9 @@ struct SimulationRequest {
   bool preview = false;
   std::string sensor = "typical";    ///< ideal | typical | harsh | a sensor YAML file
   std::vector<std::string> effects;  ///< only these effects of the sensor (empty: all)
+
+  /// Errors name the field and its bounds (durations up to a day).
+  Status Validate() const;
 };
 
 struct SimulationWorld {

@@ -11,23 +11,28 @@ std::string VersionString() {
   return std::string("aavio ") + kVersion + " (git " + kGitRevision + ")";
 }
 
-int RunCli(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
-  CLI::App app{"aavio: IMU-aided event-based stereo visual odometry (Niu, Zhong, Zhou, ICRA 2024)",
-               "aavio"};
-  app.require_subcommand(0, 1);
-  app.set_version_flag("--version", VersionString());
-  app.footer("Run `aavio COMMAND --help` for a command's options.");
+std::unique_ptr<CLI::App> MakeApp(Context& ctx) {
+  auto app = std::make_unique<CLI::App>(
+      "aavio: IMU-aided event-based stereo visual odometry (Niu, Zhong, Zhou, ICRA 2024)", "aavio");
+  app->require_subcommand(0, 1);
+  app->set_version_flag("--version", VersionString());
+  app->footer("Run `aavio COMMAND --help` for a command's options.");
+  RegisterInfo(*app, ctx);
+  RegisterConfig(*app, ctx);
+  RegisterConvert(*app, ctx);
+  RegisterSimulate(*app, ctx);
+  RegisterRepresentations(*app, ctx);
+  RegisterRun(*app, ctx);
+  RegisterDemo(*app, ctx);
+  RegisterEval(*app, ctx);
+  RegisterReport(*app, ctx);
+  return app;
+}
 
+int RunCli(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
   Context ctx{out, err, {}};
-  RegisterInfo(app, ctx);
-  RegisterConfig(app, ctx);
-  RegisterConvert(app, ctx);
-  RegisterSimulate(app, ctx);
-  RegisterRepresentations(app, ctx);
-  RegisterRun(app, ctx);
-  RegisterDemo(app, ctx);
-  RegisterEval(app, ctx);
-  RegisterReport(app, ctx);
+  const std::unique_ptr<CLI::App> made = MakeApp(ctx);
+  CLI::App& app = *made;
 
   std::vector<std::string> reversed(args.rbegin(), args.rend() - (args.empty() ? 0 : 1));
   try {

@@ -467,14 +467,15 @@ TEST(Cli, RunOdometryWritesItsOutputsAndIsDeterministic) {
   EXPECT_NEAR(outcomes, per_cycle["temporal_candidates"].get<double>(), 1e-9);
   // Mapping inside each tick (no concurrent cycle): maps one tick earlier, so a different but
   // equally valid trajectory.
-  r = RunAavio({"run", seq, "--out", two, "--quiet", "--set", "pipeline.concurrent_mapping=false"});
+  r = RunAavio({"run", seq, "--out", two, "--quiet", "--overwrite", "--set",
+                "pipeline.concurrent_mapping=false"});
   ASSERT_EQ(r.code, kExitOk) << r.err;
   const std::string inline_traj = ReadAll(std::filesystem::path(two) / "stamped_traj_estimate.txt");
   EXPECT_EQ(inline_traj.find("nan"), std::string::npos);
   EXPECT_EQ(std::count(inline_traj.begin(), inline_traj.end(), '\n'),
             std::count(traj.begin(), traj.end(), '\n'));
   // ESVO-like mode: its configuration is the one that ran.
-  r = RunAavio({"run", seq, "--out", two, "--quiet", "--esvo"});
+  r = RunAavio({"run", seq, "--out", two, "--quiet", "--overwrite", "--esvo"});
   ASSERT_EQ(r.code, kExitOk) << r.err;
   const std::string config = ReadAll(std::filesystem::path(two) / "config.yaml");
   EXPECT_NE(config.find("mode: newest_events"), std::string::npos);
@@ -615,7 +616,8 @@ TEST(Cli, SimulateTakesASensorLevelOrFileAndSaysWhatItIs) {
   EXPECT_NE(r.err.find("use ideal, typical, harsh or a sensor YAML file"), std::string::npos);
   r = RunAavio({"simulate", "--preset", "mini", "--out", (dir / "g").string(), "--duration", "-1"});
   EXPECT_EQ(r.code, kExitUsage);
-  EXPECT_NE(r.err.find("--duration -1 must be a positive number"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--duration: Value -1 not in range [0.001, 86400]"), std::string::npos)
+      << r.err;
 }
 
 TEST(Cli, DemoSimulatesRunsAndReportsAccuracy) {

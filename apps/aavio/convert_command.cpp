@@ -8,10 +8,12 @@
 #include "aavio/common/format.hpp"
 #include "aavio/io/bag_streams.hpp"
 #include "aavio/io/calibration.hpp"
+#include "aavio/io/output_folder.hpp"
 #include "aavio/io/sequence.hpp"
 #include "aavio/io/sequence_writer.hpp"
 #include "aavio/io/trajectory_io.hpp"
 #include "cli.hpp"
+#include "option_checks.hpp"
 
 namespace aavio::cli {
 
@@ -26,6 +28,7 @@ struct ConvertOptions {
   std::string out;
   std::string compression = "lz4";
   double max_reorder_ms = 10.0;
+  bool overwrite = false;
 };
 
 Status Convert(const ConvertOptions& options, Context& ctx) {
@@ -49,6 +52,18 @@ Status Convert(const ConvertOptions& options, Context& ctx) {
     height = (*reader)->left().info().height;
   }
 
+  // The input's own folder would lose its files to --overwrite.
+  const fs::path input_folder = fs::is_directory(options.input)
+                                    ? fs::path(options.input)
+                                    : fs::path(options.input).parent_path();
+  std::error_code ec;
+  if (fs::exists(options.out, ec) &&
+      fs::equivalent(input_folder.empty() ? "." : input_folder, options.out, ec)) {
+    return InvalidArgument(
+        options.out + ": is the folder of the sequence being converted; give --out another folder");
+  }
+  AAVIO_RETURN_IF_ERROR(io::PrepareOutputFolder(
+      options.out, {.outputs = io::kSequenceOutputs, .overwrite = options.overwrite}));
   Expected<io::SequenceFormat> format = io::ParseSequenceFormat(options.to);
   if (!format) return format.status();
   const io::BagCompression compression = options.compression == "none"  ? io::BagCompression::kNone
@@ -106,12 +121,15 @@ void RegisterConvert(CLI::App& app, Context& ctx) {
   sub->add_option("sequence", options->input, "Sequence to convert")->required();
   sub->add_option("--to", options->to, "Output format")->check(CLI::IsMember({"bag", "h5", "txt"}));
   sub->add_option("--out", options->out, "Output folder")->required();
+  sub->add_flag("--overwrite", options->overwrite,
+                "Replace a sequence already in --out (else that is an error)");
   sub->add_option("--calib", options->calibration,
                   "Calibration (for a bag without a sequence.yaml)");
   sub->add_option("--compression", options->compression, "Bag chunk compression")
       ->check(CLI::IsMember({"none", "lz4", "bz2"}));
   sub->add_option("--max-reorder-ms", options->max_reorder_ms,
-                  "Reorder events up to this far out of time order (more is an error)");
+                  "Reorder events up to this far out of time order (more is an error)")
+      ->check(NumberIn(0.0, 60000.0));
   sub->callback([&ctx, options] {
     ctx.action = [&ctx, options] {
       Status status = Convert(*options, ctx);

@@ -10,6 +10,7 @@
 
 #include "aavio/common/format.hpp"
 #include "cli.hpp"
+#include "option_checks.hpp"
 
 namespace aavio::cli {
 namespace {
@@ -37,8 +38,9 @@ int RunDemo(const DemoOptions& options, Context& ctx) {
   if (options.resimulate || !fs::exists(fs::path(sequence) / "sequence.yaml")) {
     ctx.out << "1/2 simulating the '" << options.preset << "' preset with the " << options.sensor
             << " sensor into " << sequence << "\n";
-    std::vector<std::string> args = {"aavio",  "simulate", "--preset",     options.preset, "--out",
-                                     sequence, "--sensor", options.sensor, "--quiet"};
+    std::vector<std::string> args = {"aavio",   "simulate",   "--preset", options.preset,
+                                     "--out",   sequence,     "--sensor", options.sensor,
+                                     "--quiet", "--overwrite"};
     args.push_back("--seed");
     args.push_back(std::to_string(options.seed));
     if (options.duration_s > 0.0) {
@@ -51,7 +53,9 @@ int RunDemo(const DemoOptions& options, Context& ctx) {
     ctx.out << "1/2 reusing the simulated sequence in " << sequence << " (--resimulate to redo)\n";
   }
   ctx.out << "2/2 running the odometry: aavio run " << sequence << " --out " << run << "\n";
-  const int code = RunCli({"aavio", "run", sequence, "--out", run, "--quiet"}, ctx.out, ctx.err);
+  // The demo's folders are its own: each demo replaces the previous one's run.
+  const int code =
+      RunCli({"aavio", "run", sequence, "--out", run, "--quiet", "--overwrite"}, ctx.out, ctx.err);
   if (code != kExitOk) return code;
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -74,12 +78,13 @@ void RegisterDemo(CLI::App& app, Context& ctx) {
       ->capture_default_str();
   sub->add_option("--duration", options->duration_s, "Seconds to simulate (0: the preset's length)")
       ->capture_default_str()
-      ->check(CLI::Range(0.0, 3600.0));
+      ->check(NumberIn(0.0, 3600.0));
   sub->add_option("--sensor", options->sensor,
                   "Sensor model: ideal, typical or harsh, or a sensor YAML file")
       ->capture_default_str();
   sub->add_option("--seed", options->seed, "Seed of the scene, motion and sensor noise")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(NonNegative());
   sub->add_flag("--resimulate", options->resimulate, "Simulate again even if the folder has data");
   sub->callback(
       [&ctx, options] { ctx.action = [&ctx, options] { return RunDemo(*options, ctx); }; });

@@ -13,6 +13,7 @@
 #include "aavio/recording/run_evaluation.hpp"
 #include "aavio/recording/run_recorder.hpp"
 #include "cli.hpp"
+#include "option_checks.hpp"
 #include "sequence_opening.hpp"
 
 namespace aavio::cli {
@@ -143,14 +144,19 @@ void RegisterEval(CLI::App& app, Context& ctx) {
   sub->add_option("--align", options->align, "se3 | sim3 | posyaw | none")->capture_default_str();
   sub->add_option("--align-frames", options->align_frames,
                   "Align on the first N pose pairs only (-1: all)")
-      ->capture_default_str();
-  sub->add_option("--max-dt", options->max_dt_s, "Association window [s]")->capture_default_str();
+      ->capture_default_str()
+      ->check(NumberIn(-1, 1 << 30));
+  sub->add_option("--max-dt", options->max_dt_s, "Association window [s]")
+      ->capture_default_str()
+      ->check(NumberIn(1e-6, 10.0));
   sub->add_option("--lengths", options->lengths_m,
                   "RPE sub-trajectory lengths [m] (default: 10,20,30,40,50 % of the path)")
-      ->delimiter(',');
+      ->delimiter(',')
+      ->check(NumberIn(1e-6, 1e7));
   sub->add_option("--fractions", options->fractions,
                   "RPE sub-trajectory lengths as fractions of the path")
-      ->delimiter(',');
+      ->delimiter(',')
+      ->check(NumberIn(1e-6, 1.0));
   sub->add_flag("--json", options->json, "Print JSON (the keys of design.md §4)");
   sub->callback([&ctx, options] {
     ctx.action = [&ctx, options] {

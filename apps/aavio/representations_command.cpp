@@ -9,6 +9,7 @@
 #include "aavio/geometry/rectification.hpp"
 #include "cli.hpp"
 #include "config_options.hpp"
+#include "option_checks.hpp"
 #include "representation_images.hpp"
 #include "sequence_opening.hpp"
 
@@ -102,12 +103,14 @@ void RegisterRepresentations(CLI::App& app, Context& ctx) {
       "representations",
       "Write one tick's time surfaces, AA map and edge samples as PNGs, to look at them");
   sub->add_option("sequence", options->sequence, "sequence.yaml, DSEC folder or bag")->required();
-  sub->add_option("--at", options->at_s, "Seconds from the start of the sequence")->required();
+  sub->add_option("--at", options->at_s, "Seconds from the start of the sequence")
+      ->required()
+      ->check(DataSeconds());
   sub->add_option("--out", options->out_dir, "Folder for the PNGs")->required();
   sub->add_option("--calib", options->calibration, "Calibration, if the sequence names none");
   sub->add_option("--history", options->history_s,
                   "Seconds of events read before --at (the time surface's memory)")
-      ->check(CLI::Range(0.0, 60.0));
+      ->check(NumberIn(0.0, 60.0));
   AddConfigOptions(*sub, &options->config);
   sub->callback([&ctx, options] {
     ctx.action = [&ctx, options] {

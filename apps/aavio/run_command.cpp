@@ -27,6 +27,7 @@
 #include "cli.hpp"
 #include "config_options.hpp"
 #include "ground_truth_maps.hpp"
+#include "option_checks.hpp"
 #include "sequence_opening.hpp"
 
 namespace aavio::cli {
@@ -36,6 +37,7 @@ using Clock = std::chrono::steady_clock;
 
 struct RunOptions {
   std::string sequence, calibration, out_dir;
+  bool overwrite = false;
   bool gt_poses = false;
   bool gt_map = false;
   bool esvo = false;
@@ -45,9 +47,12 @@ struct RunOptions {
   config::ConfigSources config;
 };
 
-std::atomic<bool> g_interrupted{false};  // Ctrl-C during a run: stop and write what is done
-extern "C" void OnInterrupt(int) {
+// Ctrl-C (or SIGTERM) during a run: stop after the current packet and write what is done. A
+// second one ends the program at once (the default action is back).
+std::atomic<bool> g_interrupted{false};
+extern "C" void OnInterrupt(int signal_number) {
   g_interrupted.store(true);
+  std::signal(signal_number, SIG_DFL);
 }
 
 // The configuration is for this sequence's rig: its sensor's settings, and the preset it
@@ -173,7 +178,8 @@ Expected<Fed> FeedPackets(io::SequenceReader* reader, TimeNs begin, TimeNs end,
   io::SensorPacket packet;
   Fed fed{begin, false};
   g_interrupted.store(false);
-  auto previous = std::signal(SIGINT, OnInterrupt);
+  auto previous_int = std::signal(SIGINT, OnInterrupt);
+  auto previous_term = std::signal(SIGTERM, OnInterrupt);
   Status status = Status::Ok();
   for (std::int64_t packets = 0;; ++packets) {
     if (g_interrupted.load()) {
@@ -205,13 +211,15 @@ Expected<Fed> FeedPackets(io::SequenceReader* reader, TimeNs begin, TimeNs end,
               << std::flush;
     }
   }
-  std::signal(SIGINT, previous);
+  std::signal(SIGINT, previous_int);
+  std::signal(SIGTERM, previous_term);
   if (progress) ctx.err << "\r" << std::string(90, ' ') << "\r";
   if (!status.ok()) return status;
   return fed;
 }
 
-Status Run(RunOptions options, Context& ctx) {
+// Returns whether the run was interrupted (its outputs hold what was done).
+Expected<bool> Run(RunOptions options, Context& ctx) {
   Expected<OpenedSequence> opened = OpenSequence(options.sequence, options.calibration);
   if (!opened) return opened.status();
   ConfigureForSequence(*opened, &options, ctx);
@@ -256,6 +264,7 @@ Status Run(RunOptions options, Context& ctx) {
 
   recording::RunRecorderOptions recorder_options;
   recorder_options.out_dir = options.out_dir;
+  recorder_options.overwrite = options.overwrite;
   recorder_options.mode = ModeName(options);
   // Absolute, so that `aavio eval --run` and `aavio report` find it from any folder.
   recorder_options.sequence =
@@ -326,7 +335,7 @@ Status Run(RunOptions options, Context& ctx) {
   Expected<recording::RunRecord> record = recorder.Finish(fed->interrupted, fed->last_t, extra);
   if (!record) return record.status();
   PrintRun(*record, options, tracking_error, config->imu.use_gyro_prior, ctx);
-  return Status::Ok();
+  return fed->interrupted;
 }
 
 }  // namespace
@@ -338,6 +347,8 @@ void RegisterRun(CLI::App& app, Context& ctx) {
       "Run the odometry on a sequence (or mapping only: --gt-poses, tracking only: --gt-map)");
   sub->add_option("sequence", options->sequence, "sequence.yaml, DSEC folder or bag")->required();
   sub->add_option("--out", options->out_dir, "Output folder")->required();
+  sub->add_flag("--overwrite", options->overwrite,
+                "Replace an earlier run in --out (else that is an error)");
   sub->add_option("--calib", options->calibration, "Calibration, if the sequence names none");
   sub->add_flag("--gt-poses", options->gt_poses,
                 "Mapping only, with the sequence's ground-truth poses instead of tracking");
@@ -349,9 +360,9 @@ void RegisterRun(CLI::App& app, Context& ctx) {
                 "runs (pipeline.real_time): for live input, not bit-reproducible");
   sub->add_flag("--gt-map", options->gt_map,
                 "Tracking only, against maps built from the sequence's ground-truth depth");
-  sub->add_option("--start", options->start_s, "Seconds to skip")->check(CLI::NonNegativeNumber);
+  sub->add_option("--start", options->start_s, "Seconds to skip")->check(DataSeconds());
   sub->add_option("--duration", options->duration_s, "Seconds to process (default: all)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(DataSeconds());
   sub->add_flag("--quiet", options->quiet, "No progress output");
   AddConfigOptions(*sub, &options->config);
   sub->callback([&ctx, options] {
@@ -361,10 +372,12 @@ void RegisterRun(CLI::App& app, Context& ctx) {
                    "each other; give neither for the full odometry\n";
         return static_cast<int>(kExitUsage);
       }
-      const Status status = Run(*options, ctx);
-      if (status.ok()) return static_cast<int>(kExitOk);
-      ctx.err << "aavio run: error: " << status.message() << "\n";
-      return static_cast<int>(kExitError);
+      const Expected<bool> interrupted = Run(*options, ctx);
+      if (!interrupted) {
+        ctx.err << "aavio run: error: " << interrupted.status().message() << "\n";
+        return static_cast<int>(kExitError);
+      }
+      return static_cast<int>(*interrupted ? kExitInterrupted : kExitOk);
     };
   });
 }

@@ -11,6 +11,7 @@
 #include "aavio/sim/sensor_model.hpp"
 #include "aavio/sim/simulator.hpp"
 #include "cli.hpp"
+#include "option_checks.hpp"
 
 namespace aavio::cli {
 
@@ -80,11 +81,16 @@ void RegisterSimulate(CLI::App& app, Context& ctx) {
       "simulate", "Simulate a stereo event camera + IMU sequence with exact ground truth");
   sub->add_option("--preset", request->preset, "Sensor, scene and motion: " + names);
   sub->add_option("--out", request->out_dir, "Output folder (a sequence)");
+  sub->add_flag("--overwrite", request->overwrite,
+                "Replace a sequence already in --out (else that is an error)");
   sub->add_option("--format", request->format, "Event files: h5 (DSEC layout), bag or txt")
       ->check(CLI::IsMember({"h5", "bag", "txt"}));
-  sub->add_option("--duration", *duration, "Seconds to simulate (default: the preset's)");
-  sub->add_option("--start", request->start_s, "Seconds to skip into --trajectory");
-  sub->add_option("--seed", request->seed, "Seed of the scene, motion, noise and sensor");
+  sub->add_option("--duration", *duration, "Seconds to simulate (default: the preset's)")
+      ->check(NumberIn(1e-3, 86400.0));
+  sub->add_option("--start", request->start_s, "Seconds to skip into --trajectory")
+      ->check(DataSeconds());
+  sub->add_option("--seed", request->seed, "Seed of the scene, motion, noise and sensor")
+      ->check(NonNegative());
   sub->add_option("--trajectory", request->trajectory,
                   "Follow a recorded camera path (TUM file): a twin of a real sequence");
   sub->add_option("--calib", request->calibration, "Calibration replacing the preset's");
@@ -112,11 +118,6 @@ void RegisterSimulate(CLI::App& app, Context& ctx) {
       if (request->out_dir.empty()) {
         ctx.err << "aavio simulate: error: --out is required (the folder the sequence is written "
                    "to)\n";
-        return static_cast<int>(kExitUsage);
-      }
-      if (*duration < 0.0 || !std::isfinite(*duration)) {
-        ctx.err << "aavio simulate: error: --duration " << *duration
-                << " must be a positive number of seconds (or left out for the preset's)\n";
         return static_cast<int>(kExitUsage);
       }
       if (*duration > 0.0) request->duration_s = *duration;

@@ -28,7 +28,7 @@ def main():
     args = parser.parse_args()
 
     sequence = aavio.simulate(os.path.join(args.out, "sequence"), preset=args.preset, seed=args.seed,
-                              duration_s=args.duration, trajectory=args.trajectory)
+                              duration_s=args.duration, trajectory=args.trajectory, overwrite=True)
     seq = aavio.open_sequence(sequence)
     print("sequence %s: %.1f s, %dx%d px, baseline %.3f m" % (
         sequence, seq.duration_s, seq.rig["width"], seq.rig["height"], seq.rig["baseline_m"]))

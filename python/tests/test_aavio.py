@@ -17,9 +17,9 @@ AAVIO_BIN = os.environ.get("AAVIO_BIN", "aavio")
 def twin():
     """A 1.5 s mini twin (typical sensor, seed 3) and `aavio run`'s folder for it."""
     out = os.path.join(TMP, "twin")
-    sequence = aavio.simulate(out, preset="mini", seed=3, duration_s=1.5)
+    sequence = aavio.simulate(out, preset="mini", seed=3, duration_s=1.5, overwrite=True)
     run_dir = os.path.join(TMP, "run")
-    subprocess.run([AAVIO_BIN, "run", sequence, "--out", run_dir, "--quiet"], check=True,
+    subprocess.run([AAVIO_BIN, "run", sequence, "--out", run_dir, "--quiet", "--overwrite"], check=True,
                    stdout=subprocess.DEVNULL)
     return sequence, run_dir
 

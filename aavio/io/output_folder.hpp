@@ -1,0 +1,30 @@
+#pragma once
+/// The output folder of a command (a run, a simulated or converted sequence): never mixed with an
+/// earlier run's files, never overwritten without being asked, and checked before any work starts.
+
+#include <cstdint>
+#include <span>
+#include <string>
+
+#include "aavio/common/status.hpp"
+
+namespace aavio::io {
+
+struct OutputFolderOptions {
+  /// Files or folders directly in the folder that the command writes.
+  std::span<const char* const> outputs;
+  /// Remove earlier outputs instead of refusing the folder (the command's --overwrite).
+  bool overwrite = false;
+  /// The command's option that names the folder, for messages.
+  std::string option = "--out";
+  /// Refuse to start with less free space than this (a full disk).
+  std::uint64_t min_free_bytes = 64ull << 20;
+};
+
+/// Creates `dir` if needed. When it holds any of `options.outputs`: an error naming them and the
+/// fix, or with `overwrite` they are removed (nothing else in the folder is touched). Then the
+/// folder must take a file (a probe, removed again) and have `min_free_bytes` free; otherwise an
+/// error naming the folder and the cause.
+Status PrepareOutputFolder(const std::string& dir, const OutputFolderOptions& options);
+
+}  // namespace aavio::io

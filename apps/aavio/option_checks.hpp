@@ -1,0 +1,39 @@
+#pragma once
+/// Checks of numeric options. CLI11's Range and NonNegativeNumber let "nan" through (every
+/// comparison with NaN is false); these refuse NaN and infinities as well.
+
+#include <CLI/CLI.hpp>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "aavio/common/format.hpp"
+
+namespace aavio::cli {
+
+/// A finite number in [lo, hi].
+inline CLI::Validator NumberIn(double lo, double hi) {
+  return CLI::Validator(
+      [lo, hi](std::string& text) -> std::string {
+        double value = 0.0;
+        if (!CLI::detail::lexical_cast(text, value) || !std::isfinite(value) || value < lo ||
+            value > hi) {
+          return StrFormat("Value %s not in range [%g, %g]", text.c_str(), lo, hi);
+        }
+        return std::string();
+      },
+      StrFormat("NUMBER in [%g - %g]", lo, hi));
+}
+
+/// A finite number >= 0.
+inline CLI::Validator NonNegative() {
+  return NumberIn(0.0, std::numeric_limits<double>::max());
+}
+
+/// A span of data time in seconds: 0 to a million (11.6 days; larger ones overflow nanoseconds
+/// on a sensor clock).
+inline CLI::Validator DataSeconds() {
+  return NumberIn(0.0, 1e6);
+}
+
+}  // namespace aavio::cli
