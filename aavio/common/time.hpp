@@ -31,6 +31,14 @@ constexpr TimeNs UsToNs(std::int64_t t_us) {
 constexpr TimeNs MsToNs(double t_ms) {
   return static_cast<TimeNs>(t_ms * 1e6 + (t_ms >= 0 ? 0.5 : -0.5));
 }
+/// (t_us + offset_us) · 1000 into *t_ns; false if it does not fit TimeNs (±292 years): a
+/// corrupt time in a file.
+constexpr bool MicrosecondsToNs(std::int64_t t_us, std::int64_t offset_us, TimeNs* t_ns) {
+  std::int64_t sum = 0;
+  return !__builtin_add_overflow(t_us, offset_us, &sum) &&
+         !__builtin_mul_overflow(sum, kNsPerUs, t_ns);
+}
+
 /// a + b, clamped to TimeNs's range (reads "until the end of time" add windows to INT64_MAX).
 constexpr TimeNs SaturatingAdd(TimeNs a, TimeNs b) {
   TimeNs sum = 0;

@@ -90,8 +90,13 @@ Status DsecH5EventStream::State::ReadBlock() {
   }
   block.resize(n);
   for (std::uint64_t i = 0; i < n; ++i) {
-    block[i] = {(ts[i] + t_offset_us) * kNsPerUs, xs[i], ys[i],
-                static_cast<std::uint8_t>(ps[i] > 0 ? 1 : 0)};
+    TimeNs t_ns = 0;
+    if (!MicrosecondsToNs(ts[i], t_offset_us, &t_ns)) {
+      return ParseError(path + ": event " + std::to_string(next_index + i) + " at t = " +
+                        std::to_string(ts[i]) + " µs (+ t_offset " + std::to_string(t_offset_us) +
+                        ") is beyond what nanoseconds hold (292 years): a corrupt file");
+    }
+    block[i] = {t_ns, xs[i], ys[i], static_cast<std::uint8_t>(ps[i] > 0 ? 1 : 0)};
   }
   // In-order runs in one copy; an element out of order goes through Push (reordered or an error).
   const std::span<const events::Event> all(block);
@@ -221,8 +226,12 @@ Expected<std::unique_ptr<DsecH5EventStream>> DsecH5EventStream::Open(const std::
     if (!first) return first.status();
     Expected<std::int64_t> last = s->ReadT(static_cast<std::uint64_t>(n - 1));
     if (!last) return last.status();
-    s->info.t_first_ns = (*first + s->t_offset_us) * kNsPerUs;
-    s->info.t_last_ns = (*last + s->t_offset_us) * kNsPerUs;
+    if (!MicrosecondsToNs(*first, s->t_offset_us, &s->info.t_first_ns) ||
+        !MicrosecondsToNs(*last, s->t_offset_us, &s->info.t_last_ns)) {
+      return ParseError(path +
+                        ": /events/t + /t_offset is beyond what nanoseconds hold (292 "
+                        "years): a corrupt file");
+    }
   }
   return std::unique_ptr<DsecH5EventStream>(new DsecH5EventStream(std::move(s)));
 }

@@ -101,9 +101,13 @@ TEST(DsecH5, BadFilesGiveClearErrors) {
     const char* expected;
   };
   const std::vector<Case> open_errors = {
-      {"wrong_dtype.h5", "/events/x must hold integers"},  {"missing_t.h5", "missing /events/t"},
-      {"length_mismatch.h5", "must have the same length"}, {"truncated.h5", "truncated file"},
-      {"not_hdf5.h5", "not a readable HDF5 file"},         {"does_not_exist.h5", "no such file"},
+      {"wrong_dtype.h5", "/events/x must hold integers"},
+      {"missing_t.h5", "missing /events/t"},
+      {"length_mismatch.h5", "must have the same length"},
+      {"truncated.h5", "truncated file"},
+      {"not_hdf5.h5", "not a readable HDF5 file"},
+      {"does_not_exist.h5", "no such file"},
+      {"t_overflow.h5", "/events/t + /t_offset is beyond what nanoseconds hold"},
   };
   for (const Case& c : open_errors) {
     auto stream = DsecH5EventStream::Open(Fixture(c.file), {});

@@ -170,7 +170,10 @@ Status ParseImuLine(std::string_view line, const std::string& where, ImuTextLayo
   } else {
     std::int64_t t_us = 0;
     if (!ParseNumber(f[0], &t_us)) return ParseError(where + ": t_us must be an integer");
-    t_ns = t_us * kNsPerUs;
+    if (!MicrosecondsToNs(t_us, 0, &t_ns)) {
+      return ParseError(where + ": t_us = " + std::string(f[0]) +
+                        " is beyond what nanoseconds hold (292 years)");
+    }
   }
   std::array<double, 6> v{};
   for (int k = 0; k < 6; ++k) {

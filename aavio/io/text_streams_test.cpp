@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include "tests/event_fixtures.hpp"
 #include "tests/test_utils.hpp"
 
@@ -50,6 +52,19 @@ TEST(TextStreams, ReadsTumVieImuLayout) {
   EXPECT_EQ(got[1].t_ns, 6 * kNsPerMs);
   EXPECT_DOUBLE_EQ(got[0].gyro_rad_s.z(), 0.3);
   EXPECT_DOUBLE_EQ(got[0].accel_m_s2.z(), 9.8);
+
+  // A time whose nanoseconds overflow (found by fuzzing under UBSan): an error, not UB.
+  const std::string huge = testing::WriteFile(testing::ScratchDir() / "imu_data.txt",
+                                              "1777777775555555555 0 0 0 0 0 9.8\n");
+  auto bad = TextImuStream::Open(huge, ImuTextLayout::kTumVie, {});
+  std::vector<imu::ImuSample> out;
+  const Status s =
+      bad.ok() ? (*bad)->ReadUntil(std::numeric_limits<TimeNs>::max(), &out) : bad.status();
+  ASSERT_FALSE(s.ok());
+  EXPECT_NE(s.message().find("imu_data.txt:1: t_us = 1777777775555555555 is beyond what "
+                             "nanoseconds hold"),
+            std::string::npos)
+      << s.message();
 }
 
 TEST(TextStreams, MalformedLinesNameFileAndLine) {
