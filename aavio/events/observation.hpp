@@ -21,6 +21,9 @@ struct RepresentationTimings {
 
 struct Observation {
   TimeNs t_ns = 0;
+  /// Events of each camera since the previous tick (-1: not counted, an observation built
+  /// elsewhere).
+  std::int64_t new_events_left = -1, new_events_right = -1;
   cv::Mat ts_left, ts_right;  ///< time surfaces, rectified, median-filtered, CV_8UC1 (0–255)
   cv::Mat negative_ts_left;   ///< tracking's objective image, CV_8UC1
   cv::Mat grad_u, grad_v;     ///< Sobel/8 of negative_ts_left, CV_32FC1

@@ -61,10 +61,12 @@ Status RepresentationBuilder::AddEvents(Camera camera, std::span<const Event> ev
   return Status::Ok();
 }
 
-Status RepresentationBuilder::Consume(CameraState& camera, TimeNs t_ns, bool keep_window) {
+Status RepresentationBuilder::Consume(CameraState& camera, TimeNs t_ns, bool keep_window,
+                                      std::int64_t* consumed) {
   const auto end = std::upper_bound(camera.pending.begin(), camera.pending.end(), t_ns,
                                     [](TimeNs t, const Event& e) { return t < e.t_ns; });
   std::span<const Event> batch(camera.pending.begin(), end);
+  *consumed = static_cast<std::int64_t>(batch.size());
   AAVIO_RETURN_IF_ERROR(camera.ts.Insert(batch));
   if (keep_window) window_.insert(window_.end(), batch.begin(), batch.end());
   camera.pending.erase(camera.pending.begin(), end);
@@ -81,8 +83,8 @@ Status RepresentationBuilder::Build(TimeNs t_ns, Observation* out, BuildOptions 
 
   // Time surfaces: raw → rectified (bilinear) → median.
   auto start = Clock::now();
-  AAVIO_RETURN_IF_ERROR(Consume(left_, t_ns, true));
-  AAVIO_RETURN_IF_ERROR(Consume(right_, t_ns, false));
+  AAVIO_RETURN_IF_ERROR(Consume(left_, t_ns, true, &out->new_events_left));
+  AAVIO_RETURN_IF_ERROR(Consume(right_, t_ns, false, &out->new_events_right));
   const double decay_ms = config_.time_surface.decay_ms;
   for (CameraState* camera : {&left_, &right_}) {
     if (camera == &right_ && !options.right_ts) {

@@ -55,7 +55,7 @@ class RepresentationBuilder {
     TimeNs newest_added_ns;
   };
   // Moves the pending events up to t_ns into the time surface (and the left window).
-  Status Consume(CameraState& camera, TimeNs t_ns, bool keep_window);
+  Status Consume(CameraState& camera, TimeNs t_ns, bool keep_window, std::int64_t* consumed);
 
   RepresentationConfig config_;
   geometry::StereoRectification rectification_;

@@ -104,6 +104,8 @@ Status Odometry::Tick(TimeNs t_ns, int skipped_ticks) {
   OdometryTick tick;
   tick.t_ns = t_ns;
   tick.skipped_ticks = skipped_ticks;
+  tick.new_events_left = obs->new_events_left;
+  tick.new_events_right = obs->new_events_right;
   tick.representation = obs->timings;
   if (before_tick) before_tick(*obs);
   if (config_.pipeline.real_time) {
@@ -187,7 +189,9 @@ Status Odometry::Tick(TimeNs t_ns, int skipped_ticks) {
       }
     }
   } else if (++lost_ticks_ >= config_.pipeline.max_lost_ticks) {
-    // Lost for too long: forget the map; the next ticks bootstrap at the held pose.
+    // Lost for too long (ticks without events too: the camera may have moved meanwhile, and the
+    // gyroscope alone does not say how far): forget the map; the next ticks bootstrap at the
+    // held pose.
     if (pending_cycle_.valid()) pending_cycle_.get();  // a cycle of the old map: dropped
     mapper_.Reset();
     PublishToTracking(nullptr);

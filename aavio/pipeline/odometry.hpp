@@ -55,6 +55,8 @@ struct OdometryTick {
   /// Ticks due before this one that were not run (TickPolicy::kLatest: a live input catching
   /// up); their events are in this tick's time surfaces.
   int skipped_ticks = 0;
+  /// Events of each camera since the previous tick.
+  std::int64_t new_events_left = 0, new_events_right = 0;
   bool mapping_skipped = false;         ///< real-time mode: a cycle was due but the last still ran
   double mapping_wait_ms = 0.0;         ///< concurrent mapping: waited this long for the last cycle
   mapping::MappingCycleReport mapping;  ///< of the cycle, if one ran (not for bootstraps)
@@ -117,7 +119,7 @@ class Odometry {
   mapping::Mapper mapper_;
   std::deque<imu::ImuSample> imu_;
   TimeNs tick_ns_, next_tick_ns_;
-  TimeNs last_tick_ns_;  // the last tick run (the start before the first)
+  TimeNs last_tick_ns_;   // the last tick run (the start before the first)
   TimeNs cycle_ns_;       // mapping period: a whole number of ticks
   TimeNs next_cycle_ns_;  // the next mapping cycle is due at the first tick at or after it
   bool run_mapping_;

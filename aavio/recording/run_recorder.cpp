@@ -53,7 +53,8 @@ RunRecorder::RunRecorder(RunRecorderOptions options, const geometry::StereoRig& 
       // it (rpg 0.5–5 m: 2.5 cm; DSEC: 25 cm).
       cloud_depth_m_(std::min(1.0 / config.mapping.inv_depth_min, 50.0)),
       cloud_(0.005 * cloud_depth_m_),
-      colours_(config.mapping.inv_depth_min, config.mapping.inv_depth_max) {}
+      colours_(config.mapping.inv_depth_min, config.mapping.inv_depth_max),
+      event_gaps_(options_.begin_ns) {}
 
 Expected<std::unique_ptr<RunRecorder>> RunRecorder::Open(RunRecorderOptions options,
                                                          const geometry::StereoRig& rig,
@@ -139,6 +140,7 @@ Status RunRecorder::AddConfirmedMap(const mapping::LocalMap& map,
 Status RunRecorder::AddTick(const pipeline::OdometryTick& t) {
   AddRepresentation(t.t_ns, t.representation);
   trajectory_.push_back({t.t_ns, t.T_world_cam});
+  event_gaps_.Add(t.t_ns, t.new_events_left, t.new_events_right);
   status_counts_[tracking::TrackingStatusName(t.status)]++;
   if (t.status == tracking::TrackingStatus::kLost)
     lost_reasons_[tracking::LostReasonName(t.lost_reason)]++;
@@ -269,6 +271,8 @@ Expected<RunRecord> RunRecorder::Finish(bool interrupted, TimeNs end_ns,
   s["poses"] = trajectory_.size();
   s["status"] = status_counts_;
   s["lost_reasons"] = lost_reasons_;
+  event_gaps_.Finish(std::max(end_ns, options_.begin_ns));
+  s["event_gaps"] = event_gaps_.Json();
   s["bootstraps"] = bootstraps_;
   s["reinitialisations"] = reinitialisations_;
   // Ticks on which a (re-)initialisation found too few points, and the last one's reason.

@@ -25,6 +25,7 @@
 #include "aavio/pipeline/stage_timings.hpp"
 #include "aavio/recording/depth_images.hpp"
 #include "aavio/recording/depth_scorer.hpp"
+#include "aavio/recording/event_gaps.hpp"
 #include "aavio/recording/mapping_counts.hpp"
 #include "aavio/recording/run_evaluation.hpp"
 
@@ -126,6 +127,7 @@ class RunRecorder {
   std::vector<geometry::StampedPose> trajectory_;
   pipeline::StageTimings timings_;
   MappingCounts mapping_counts_;
+  EventGaps event_gaps_;
   std::map<std::string, int> status_counts_, lost_reasons_;
   std::int64_t events_ = 0, ticks_ = 0;
   std::int64_t events_since_tick_ = 0;  ///< timings.csv's `events`

@@ -33,6 +33,19 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// Removes the events of the dark and camera-off stretches.
+void DropDisturbedEvents(const std::vector<Disturbance>& disturbances, TimeNs t_begin,
+                         std::vector<events::Event> batch[2]) {
+  for (const Disturbance& d : disturbances) {
+    if (d.kind == Disturbance::Kind::kFastMotion) continue;
+    for (int side = d.kind == Disturbance::Kind::kDark ? 0 : 1; side < 2; ++side) {
+      std::erase_if(batch[side], [&](const events::Event& e) {
+        return d.Covers(NsToSeconds(e.t_ns - t_begin));
+      });
+    }
+  }
+}
+
 // What a simulated sequence folder holds: a sequence, its calibration(s), scene and previews.
 std::vector<const char*> SimulationOutputs() {
   std::vector<const char*> names(std::begin(io::kSequenceOutputs), std::end(io::kSequenceOutputs));
@@ -224,6 +237,7 @@ Expected<SimulationReport> Simulate(const SimulationRequest& request,
     // The right camera's clock runs ahead of the left's by the rig's offset.
     for (events::Event& e : batch[1])
       e.t_ns += right_clock_offset_ns;
+    DropDisturbedEvents(request.disturbances, t_begin, batch);
     for (int side = 0; side < 2; ++side)
       AAVIO_RETURN_IF_ERROR(sink.WriteEvents(side == 0, batch[side]));
     for (const events::Event& e : batch[0])

@@ -1,5 +1,7 @@
 #include "aavio/sim/world.hpp"
 
+#include <cmath>
+
 #include "aavio/common/config_fields.hpp"
 #include "aavio/io/calibration.hpp"
 #include "aavio/io/trajectory_io.hpp"
@@ -9,10 +11,60 @@
 namespace aavio::sim {
 namespace {
 
-Expected<CameraPath> BuildMotion(const SimulationRequest& request, const SimulationPreset& preset) {
+// The fast-motion stretches as a warp of time: in a stretch of D seconds at factor K the motion
+// runs at a speed that rises from 1 to K over its first quarter (a raised cosine), holds, and
+// falls back over its last quarter, so speed and acceleration stay continuous (a shake, not a
+// jump). Such a stretch covers D + (K − 1)·(3/4)·D seconds of the motion.
+double Speed(const std::vector<Disturbance>& disturbances, double t_s) {
+  double speed = 1.0;
+  for (const Disturbance& d : disturbances) {
+    if (d.kind != Disturbance::Kind::kFastMotion || !d.Covers(t_s)) continue;
+    const double ramp = 0.25 * d.duration_s;
+    const double into = std::min(t_s - d.start_s, d.start_s + d.duration_s - t_s);
+    const double w = into >= ramp ? 1.0 : 0.5 - 0.5 * std::cos(M_PI * into / ramp);
+    speed += (d.factor - 1.0) * w;
+  }
+  return speed;
+}
+
+double ExtraMotionS(const std::vector<Disturbance>& disturbances) {
+  double extra = 0.0;
+  for (const Disturbance& d : disturbances) {
+    if (d.kind == Disturbance::Kind::kFastMotion) extra += (d.factor - 1.0) * 0.75 * d.duration_s;
+  }
+  return extra;
+}
+
+// Restamps the poses (stamps in motion time) to data time through the warp above: data time
+// advances by dt while the motion advances by Speed·dt (integrated in 0.1 ms steps).
+void SpeedUp(const std::vector<Disturbance>& disturbances,
+             std::vector<geometry::StampedPose>* poses) {
+  if (poses->empty() || ExtraMotionS(disturbances) == 0.0) return;
+  const TimeNs t0 = poses->front().t_ns;
+  constexpr double kStep_s = 1e-4;
+  double t = 0.0, u = 0.0;  // data time and motion time, seconds from the start
+  for (geometry::StampedPose& p : *poses) {
+    const double target = NsToSeconds(p.t_ns - t0);
+    while (u < target) {
+      const double du = Speed(disturbances, t) * kStep_s;
+      if (u + du >= target) {
+        t += (target - u) / du * kStep_s;
+        u = target;
+        break;
+      }
+      u += du;
+      t += kStep_s;
+    }
+    p.t_ns = t0 + SecondsToNs(t);
+  }
+}
+
+// The motion of the preset or the recorded trajectory, `extra_s` seconds longer than asked.
+Expected<CameraPath> FollowedMotion(const SimulationRequest& request,
+                                    const SimulationPreset& preset, double extra_s) {
   if (request.trajectory.empty()) {
     CameraPath motion;
-    const double duration = request.duration_s.value_or(preset.duration_s);
+    const double duration = request.duration_s.value_or(preset.duration_s) + extra_s;
     switch (preset.motion) {
       case MotionKind::kHandHeld:
         motion.poses = HandHeldMotion(duration, request.seed);
@@ -30,8 +82,15 @@ Expected<CameraPath> BuildMotion(const SimulationRequest& request, const Simulat
   Expected<std::vector<geometry::StampedPose>> recorded = io::ReadTumTrajectory(request.trajectory);
   if (!recorded) return recorded.status();
   Expected<CameraPath> path = CameraPathFromRecording(
-      *recorded, request.start_s, request.duration_s.value_or(0.0), request.body_to_camera);
+      *recorded, request.start_s, request.duration_s ? *request.duration_s + extra_s : 0.0,
+      request.body_to_camera);
   if (!path) return path.status().WithContext(request.trajectory);
+  return path;
+}
+
+Expected<CameraPath> BuildMotion(const SimulationRequest& request, const SimulationPreset& preset) {
+  Expected<CameraPath> path = FollowedMotion(request, preset, ExtraMotionS(request.disturbances));
+  if (path) SpeedUp(request.disturbances, &path->poses);
   return path;
 }
 
@@ -67,6 +126,12 @@ Status SimulationRequest::Validate() const {
   check.InRange("start_s", start_s, 0.0, kDay_s * 365.0);
   check.Require(format == "h5" || format == "bag" || format == "txt", "format",
                 "= '" + format + "' must be h5, bag or txt");
+  for (const Disturbance& d : disturbances) {
+    check.InRange("disturbances.start_s", d.start_s, 0.0, kDay_s);
+    check.InRange("disturbances.duration_s", d.duration_s, 1e-3, kDay_s);
+    if (d.kind == Disturbance::Kind::kFastMotion)
+      check.InRange("disturbances.factor", d.factor, 1.0, 20.0);
+  }
   return check.status();
 }
 

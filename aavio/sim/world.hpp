@@ -17,6 +17,23 @@
 
 namespace aavio::sim {
 
+/// A stretch of a simulated sequence where something goes wrong on purpose, to see how the
+/// odometry loses and regains tracking. Times in seconds of data from the sequence's start.
+struct Disturbance {
+  enum class Kind {
+    kDark,       ///< no events from either camera (the lights go out, a lens is covered)
+    kRightOff,   ///< the right camera sends nothing (unplugged)
+    kFastMotion  ///< the camera moves up to `factor` times faster than the motion it follows
+                 ///< (speeding up over the first quarter of the stretch, slowing over the last)
+  };
+  Kind kind = Kind::kDark;
+  double start_s = 0.0;
+  double duration_s = 0.0;
+  double factor = 4.0;  ///< kFastMotion only
+
+  bool Covers(double t_s) const { return t_s >= start_s && t_s < start_s + duration_s; }
+};
+
 struct SimulationRequest {
   std::string preset = "mini";
   std::string out_dir;
@@ -29,8 +46,9 @@ struct SimulationRequest {
   std::string calibration;              ///< ESVO/DSEC calibration replacing the preset's
   std::string body_to_camera = "auto";  ///< identity | driving | auto (driving rule for cars)
   bool preview = false;
-  std::string sensor = "typical";    ///< ideal | typical | harsh | a sensor YAML file
-  std::vector<std::string> effects;  ///< only these effects of the sensor (empty: all)
+  std::string sensor = "typical";         ///< ideal | typical | harsh | a sensor YAML file
+  std::vector<std::string> effects;       ///< only these effects of the sensor (empty: all)
+  std::vector<Disturbance> disturbances;  ///< darkness, a camera off, too fast a motion
 
   /// Errors name the field and its bounds (durations up to a day).
   Status Validate() const;

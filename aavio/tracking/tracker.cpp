@@ -1,5 +1,6 @@
 #include "aavio/tracking/tracker.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -47,6 +48,8 @@ const char* LostReasonName(LostReason reason) {
       return "rotation_jump";
     case LostReason::kTranslationJump:
       return "translation_jump";
+    case LostReason::kNoEvents:
+      return "no_events";
   }
   return "?";
 }
@@ -77,6 +80,17 @@ Tracker::Tracker(const Camera& camera, const TrackingConfig& config,
       imu_config_(imu_config),
       R_imu_cam_(R_imu_cam),
       seed_(seed) {}
+
+bool Tracker::Starved(std::int64_t new_events) const {
+  // Relative to what this sensor and scene gave lately (8 tracked ticks at least), so that no
+  // rate is assumed; a tenth: the event rate of a moving camera varies by less within a tick.
+  constexpr double kStarvedFraction = 0.1;
+  if (new_events < 0 || recent_events_.size() < 8) return false;
+  std::vector<std::int64_t> sorted = recent_events_;
+  const auto mid = sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2);
+  std::nth_element(sorted.begin(), mid, sorted.end());
+  return static_cast<double>(new_events) < kStarvedFraction * static_cast<double>(*mid);
+}
 
 void Tracker::Reset(TimeNs t_ns, const geometry::RigidTransform& T_world_cam, bool keep_velocity) {
   t_prev_ = t_ns;
@@ -114,7 +128,13 @@ TrackingResult Tracker::Track(const events::Observation& obs, const cv::Mat& val
   result.T_world_cur = predicted;
   result.T_world_predicted = predicted;
   result.status = TrackingStatus::kNoMap;
-  if (map_ && static_cast<int>(map_->points_world.size()) >= config_.min_map_points) {
+  const bool has_map =
+      map_ && static_cast<int>(map_->points_world.size()) >= config_.min_map_points;
+  if (has_map && Starved(obs.new_events_left)) {
+    // Nothing new to register on: the time surface only fades. Hold the prediction.
+    result.status = TrackingStatus::kLost;
+    result.lost_reason = LostReason::kNoEvents;
+  } else if (has_map) {
     start = Clock::now();
     // The map in its reference frame; the increment acts on T_ref,cur.
     const geometry::RigidTransform T_ref_world = map_->T_world_ref.Inverse();
@@ -158,6 +178,15 @@ TrackingResult Tracker::Track(const events::Observation& obs, const cv::Mat& val
   }
   prev_tracked_ = result.status == TrackingStatus::kOk;
   // Lost: hold the prediction and coast on the velocity; without a map: forget it.
+  if (result.status == TrackingStatus::kOk && obs.new_events_left >= 0) {
+    constexpr std::size_t kRecentTicks = 32;
+    if (recent_events_.size() < kRecentTicks) {
+      recent_events_.push_back(obs.new_events_left);
+    } else {
+      recent_events_[recent_next_] = obs.new_events_left;
+    }
+    recent_next_ = (recent_next_ + 1) % kRecentTicks;
+  }
   if (result.status == TrackingStatus::kOk) {
     const double gain = config_.velocity_gain;
     velocity_ = gain * (result.T_world_cur.t - T_prev_.t) + (1.0 - gain) * velocity_;

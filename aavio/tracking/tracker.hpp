@@ -8,6 +8,7 @@
 
 #include <optional>
 #include <span>
+#include <vector>
 
 #include "aavio/events/observation.hpp"
 #include "aavio/geometry/rigid_transform.hpp"
@@ -28,6 +29,8 @@ enum class LostReason {
   kCostGrew,         ///< the registration ended 50 % above its starting cost
   kRotationJump,     ///< corrected the prediction by more than max_correction_deg
   kTranslationJump,  ///< ... or by more than max_correction_m
+  kNoEvents,  ///< under 10 % of the events of recent tracked ticks (darkness, a covered lens, a
+              ///< standstill): not registered; the pose holds, turned by the gyroscope
 };
 const char* LostReasonName(LostReason reason);
 /// "ok", "lost" or "no_map" (summary.json, timings.csv, the Python module).
@@ -89,6 +92,11 @@ class Tracker {
   TimeNs velocity_dt_ns_ = 0;  // the tick interval velocity_ is a translation over (0: unknown)
   bool prev_tracked_ = false;  // the previous pose came from registration
   std::int64_t ticks_ = 0;
+  std::vector<std::int64_t> recent_events_;  // new left events of the last tracked ticks (ring)
+  std::size_t recent_next_ = 0;
+
+  /// The tick's new events are too few to register on (LostReason::kNoEvents).
+  bool Starved(std::int64_t new_events) const;
 };
 
 }  // namespace aavio::tracking

@@ -107,6 +107,13 @@ void PrintOdometryRun(const recording::RunRecord& r, Context& ctx) {
       "poses %zu: tracking ok %d, lost %d, no map %d; %d bootstrap(s), %d re-initialisation(s)\n",
       s["poses"].get<std::size_t>(), count("ok"), count("lost"), count("no_map"),
       s["bootstraps"].get<int>(), s["reinitialisations"].get<int>());
+  for (const char* camera : {"left", "right"}) {
+    if (s["event_gaps"][camera].empty()) continue;
+    std::string line = StrFormat("no events from the %s camera:", camera);
+    for (const nlohmann::json& gap : s["event_gaps"][camera])
+      line += StrFormat(" %.2f-%.2f s", gap[0].get<double>(), gap[1].get<double>());
+    ctx.out << line << "\n";
+  }
   if (const int failed = s["bootstrap_failures"]["ticks"].get<int>(); failed > 0) {
     ctx.out << StrFormat(
         "bootstrap: %d tick(s) found too few points and tried again on the next "

@@ -4,6 +4,9 @@
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <ostream>
+#include <sstream>
+#include <utility>
+#include <vector>
 
 #include "aavio/common/format.hpp"
 #include "aavio/io/config_yaml.hpp"
@@ -30,6 +33,50 @@ int PrintSensor(const sim::SimulationRequest& request, Context& ctx) {
                                   "sensor '" + sensor->name + "' of the " + request.preset +
                                       " preset (aavio simulate --sensor FILE reads this form)");
   return kExitOk;
+}
+
+// The options that disturb a stretch of the sequence on purpose.
+struct DisturbanceOption {
+  const char* name;
+  sim::Disturbance::Kind kind;
+  const char* help;
+};
+constexpr DisturbanceOption kDisturbanceOptions[] = {
+    {"--dark", sim::Disturbance::Kind::kDark,
+     "No events from either camera for SECONDS from START (repeatable): tracking loss"},
+    {"--right-off", sim::Disturbance::Kind::kRightOff,
+     "The right camera sends nothing for SECONDS from START (repeatable)"},
+    {"--fast", sim::Disturbance::Kind::kFastMotion,
+     "The camera moves up to FACTOR (default 4) times faster for SECONDS from START, speeding "
+     "up and slowing down over a quarter of it each (repeatable)"},
+};
+
+// "START:SECONDS", or for fast motion "START:SECONDS[:FACTOR]", in seconds of data.
+Expected<sim::Disturbance> ParseDisturbance(const DisturbanceOption& option,
+                                            const std::string& text) {
+  const bool fast = option.kind == sim::Disturbance::Kind::kFastMotion;
+  std::vector<double> numbers;
+  std::stringstream in(text);
+  std::string part;
+  while (std::getline(in, part, ':')) {
+    double value = 0.0;
+    if (!CLI::detail::lexical_cast(part, value) || !std::isfinite(value)) {
+      numbers.clear();
+      break;
+    }
+    numbers.push_back(value);
+  }
+  if (numbers.size() < 2 || numbers.size() > (fast ? 3u : 2u)) {
+    return InvalidArgument(std::string(option.name) + " " + text + ": expected " +
+                           (fast ? "START:SECONDS[:FACTOR]" : "START:SECONDS") +
+                           " in seconds of data, e.g. 2:0.5");
+  }
+  sim::Disturbance d;
+  d.kind = option.kind;
+  d.start_s = numbers[0];
+  d.duration_s = numbers[1];
+  if (numbers.size() == 3) d.factor = numbers[2];
+  return d;
 }
 
 int RunSimulate(const sim::SimulationRequest& request, bool quiet_flag, Context& ctx) {
@@ -107,13 +154,33 @@ void RegisterSimulate(CLI::App& app, Context& ctx) {
          "--effects", request->effects,
          "Only these effects of the sensor, the rest ideal (comma-separated): " + effect_names)
       ->delimiter(',');
+  auto disturbances = std::make_shared<std::vector<std::pair<DisturbanceOption, std::string>>>();
+  for (const DisturbanceOption& option : kDisturbanceOptions) {
+    sub->add_option_function<std::vector<std::string>>(
+           option.name,
+           [disturbances, option](const std::vector<std::string>& values) {
+             for (const std::string& v : values)
+               disturbances->emplace_back(option, v);
+           },
+           option.help)
+        ->type_name(option.kind == sim::Disturbance::Kind::kFastMotion ? "START:SECONDS[:FACTOR]"
+                                                                       : "START:SECONDS");
+  }
   sub->add_flag("--print-sensor", *print_sensor,
                 "Print the sensor model as YAML (for a sensor file) and exit");
   sub->add_flag("--preview", request->preview,
                 "Write preview/ PNGs (event frames, depth, top view)");
   sub->add_flag("--quiet", *quiet, "No progress output");
-  sub->callback([&ctx, request, quiet, duration, print_sensor] {
-    ctx.action = [&ctx, request, quiet, duration, print_sensor] {
+  sub->callback([&ctx, request, quiet, duration, print_sensor, disturbances] {
+    ctx.action = [&ctx, request, quiet, duration, print_sensor, disturbances] {
+      for (const auto& [option, text] : *disturbances) {
+        Expected<sim::Disturbance> d = ParseDisturbance(option, text);
+        if (!d) {
+          ctx.err << "aavio simulate: error: " << d.status().message() << "\n";
+          return static_cast<int>(kExitUsage);
+        }
+        request->disturbances.push_back(*d);
+      }
       if (*print_sensor) return PrintSensor(*request, ctx);
       if (request->out_dir.empty()) {
         ctx.err << "aavio simulate: error: --out is required (the folder the sequence is written "
