@@ -24,10 +24,11 @@ for arg in "$@"; do
   esac
 done
 
-# Build tools, libraries (design.md §3), the Python module's pybind11 and pytest, and the
+# Build tools (clang and its sanitizer and libFuzzer runtimes for scripts/sanitize.sh and
+# scripts/fuzz.sh), libraries (design.md §3), the Python module's pybind11 and pytest, and the
 # independent fixture writers the tests run with /usr/bin/python3 (formats.md §6).
 packages=(
-  build-essential cmake pkgconf git clang-format
+  build-essential cmake pkgconf git clang-format clang libclang-rt-dev
   libeigen3-dev libopencv-dev libyaml-cpp-dev libcli11-dev nlohmann-json3-dev libtbb-dev
   libhdf5-dev hdf5-filter-plugin-blosc-serial hdf5-tools liblz4-dev libzstd-dev libbz2-dev libsqlite3-dev
   libgtest-dev libgmock-dev libbenchmark-dev

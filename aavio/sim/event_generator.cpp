@@ -49,11 +49,7 @@ Status EventCameraConfig::Validate() const {
 
 EventGenerator::EventGenerator(int width, int height, const EventCameraConfig& config,
                                std::uint64_t seed)
-    : width_(width),
-      height_(height),
-      config_(config),
-      rng_(seed),
-      effects_rng_(seed ^ 0x9E3779B97F4A7C15ULL) {
+    : width_(width), config_(config), rng_(seed), effects_rng_(seed ^ 0x9E3779B97F4A7C15ULL) {
   const std::size_t n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
   threshold_on_.resize(n);
   threshold_off_.resize(n);

@@ -84,7 +84,7 @@ class EventGenerator {
   void JitterAndReadOut(TimeNs t0, TimeNs t1);
   void SortScratch();  // by time, ties by pixel index
 
-  int width_, height_;
+  int width_;
   EventCameraConfig config_;
   std::mt19937_64 rng_;           // thresholds, background activity, hot pixels
   std::mt19937_64 effects_rng_;   // the effects a plain ESIM lacks (leak, shot noise, jitter)

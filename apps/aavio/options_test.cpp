@@ -67,6 +67,17 @@ TEST(Options, AbsurdValuesNameTheOptionAndItsRange) {
             kExitUsage);
   EXPECT_NE(err.str().find("--fractions: Value 2 not in range [1e-06, 1]"), std::string::npos)
       << err.str();
+  // Disturbances of a twin: their form, then their ranges.
+  err.str("");
+  EXPECT_EQ(RunCli({"aavio", "simulate", "--out", "x", "--dark", "1"}, out, err), kExitUsage);
+  EXPECT_NE(err.str().find("--dark 1: expected START:SECONDS in seconds of data"),
+            std::string::npos)
+      << err.str();
+  err.str("");
+  EXPECT_EQ(RunCli({"aavio", "simulate", "--out", "x", "--fast", "1:0.5:50"}, out, err),
+            kExitError);
+  EXPECT_NE(err.str().find("disturbances.factor = 50 must be in [1, 20]"), std::string::npos)
+      << err.str();
 }
 
 TEST(Options, OutputFoldersAreNeverMixedOrSilentlyReplaced) {
