@@ -297,6 +297,7 @@ Expected<std::unique_ptr<ImuStream>> OpenImuStream(const SourceSpec& spec,
 Expected<std::unique_ptr<SequenceReader>> SequenceReader::Open(
     const SequenceDescription& d, const SequenceReaderOptions& options) {
   if (options.packet_ns <= 0) return InvalidArgument("packet length must be positive");
+  if (options.passes < 1) return InvalidArgument("passes must be at least 1");
   Expected<std::unique_ptr<EventStream>> left = OpenEventStream(d.left, options.stream);
   if (!left) return left.status();
   Expected<std::unique_ptr<EventStream>> right = OpenEventStream(d.right, options.stream);
@@ -326,23 +327,50 @@ SequenceReader::SequenceReader(std::unique_ptr<EventStream> left,
   extend(right_->info());
   if (imu_) extend(imu_->info());
   next_ns_ = start_ns_;
+  period_ns_ = ((end_ns_ - start_ns_) / options_.packet_ns + 1) * options_.packet_ns;
 }
 
 Expected<bool> SequenceReader::Next(SensorPacket* packet) {
   packet->left.clear();
   packet->right.clear();
   packet->imu.clear();
-  if (left_->AtEnd() && right_->AtEnd() && (!imu_ || imu_->AtEnd())) return false;
-  packet->t_begin_ns = next_ns_;
-  packet->t_end_ns = next_ns_ + options_.packet_ns;
-  AAVIO_RETURN_IF_ERROR(left_->ReadUntil(packet->t_end_ns, &packet->left));
-  AAVIO_RETURN_IF_ERROR(right_->ReadUntil(packet->t_end_ns, &packet->right));
-  if (imu_) AAVIO_RETURN_IF_ERROR(imu_->ReadUntil(packet->t_end_ns, &packet->imu));
-  next_ns_ = packet->t_end_ns;
+  const bool ended = left_->AtEnd() && right_->AtEnd() && (!imu_ || imu_->AtEnd());
+  if (ended) {
+    if (pass_ + 1 >= options_.passes) return false;
+    // The next pass: from the start again, its clock one period later.
+    AAVIO_RETURN_IF_ERROR(Seek(start_ns_ + (pass_ + 1) * period_ns_));
+  } else if (options_.passes > 1 && next_ns_ >= start_ns_ + period_ns_) {
+    return FailedPrecondition("the sequence has data past the end its files state (" +
+                              FormatSecondsNs(end_ns_) +
+                              " s); it cannot be read in several passes");
+  }
+  const TimeNs shift_ns = pass_ * period_ns_;
+  const TimeNs end_ns = next_ns_ + options_.packet_ns;
+  AAVIO_RETURN_IF_ERROR(left_->ReadUntil(end_ns, &packet->left));
+  AAVIO_RETURN_IF_ERROR(right_->ReadUntil(end_ns, &packet->right));
+  if (imu_) AAVIO_RETURN_IF_ERROR(imu_->ReadUntil(end_ns, &packet->imu));
+  packet->t_begin_ns = next_ns_ + shift_ns;
+  packet->t_end_ns = end_ns + shift_ns;
+  if (shift_ns != 0) {
+    for (auto* events : {&packet->left, &packet->right}) {
+      for (events::Event& e : *events)
+        e.t_ns += shift_ns;
+    }
+    for (imu::ImuSample& s : packet->imu)
+      s.t_ns += shift_ns;
+  }
+  next_ns_ = end_ns;
   return true;
 }
 
 Status SequenceReader::Seek(TimeNs t_ns) {
+  // Which pass t_ns falls in, and where in it.
+  pass_ = 0;
+  if (options_.passes > 1 && t_ns >= start_ns_ + period_ns_) {
+    pass_ =
+        static_cast<int>(std::min<TimeNs>((t_ns - start_ns_) / period_ns_, options_.passes - 1));
+    t_ns -= pass_ * period_ns_;
+  }
   AAVIO_RETURN_IF_ERROR(left_->Seek(t_ns));
   AAVIO_RETURN_IF_ERROR(right_->Seek(t_ns));
   if (imu_) AAVIO_RETURN_IF_ERROR(imu_->Seek(t_ns));

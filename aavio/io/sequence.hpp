@@ -85,6 +85,10 @@ struct SensorPacket {
 struct SequenceReaderOptions {
   TimeNs packet_ns = kNsPerMs;  ///< length of each packet
   StreamOptions stream;         ///< reorder window, sensor size, block size
+  /// Read the sequence this many times back to back, each pass's clock shifted to follow the
+  /// last (a long run from a short sequence: memory and speed over time). The camera jumps back
+  /// to its start at each seam.
+  int passes = 1;
 };
 
 /// Merges the streams of a sequence into consecutive packets of data time.
@@ -101,7 +105,8 @@ class SequenceReader {
   Status Seek(TimeNs t_ns);
 
   TimeNs start_ns() const { return start_ns_; }  ///< earliest stamp of any stream
-  TimeNs end_ns() const { return end_ns_; }      ///< latest stamp of any stream (as known)
+  /// Latest stamp of any stream (as known), in the last pass.
+  TimeNs end_ns() const { return end_ns_ + (options_.passes - 1) * period_ns_; }
   const EventStream& left() const { return *left_; }
   const EventStream& right() const { return *right_; }
   const ImuStream* imu() const { return imu_.get(); }
@@ -112,7 +117,9 @@ class SequenceReader {
   SequenceReaderOptions options_;
   TimeNs start_ns_ = 0;
   TimeNs end_ns_ = 0;
-  TimeNs next_ns_ = 0;
+  TimeNs next_ns_ = 0;    // in the streams' own clock
+  TimeNs period_ns_ = 0;  // one pass, a whole number of packets
+  int pass_ = 0;
 };
 
 }  // namespace aavio::io

@@ -64,6 +64,45 @@ TEST(Sequence, ReadsASequenceYamlWithRelativePaths) {
   EXPECT_EQ(imu, testing::ExpectedImu("bag_lz4").size());
 }
 
+TEST(Sequence, PassesRepeatTheSequenceOnAContinuingClock) {
+  SequenceDescription d;
+  d.left = {SourceFormat::kDsecH5, Fixture("dsec_blosc.h5"), "", {}};
+  d.right = d.left;
+  const SequenceReaderOptions options{.packet_ns = 10 * kNsPerMs, .passes = 3};
+  Expected<std::unique_ptr<SequenceReader>> reader = SequenceReader::Open(d, options);
+  ASSERT_TRUE(reader.ok()) << reader.status().message();
+  const std::vector<events::Event> once = testing::ExpectedEvents("dsec_blosc");
+  const TimeNs start = (*reader)->start_ns();
+  // One pass is a whole number of packets covering the data.
+  const TimeNs period = ((once.back().t_ns - start) / options.packet_ns + 1) * options.packet_ns;
+  EXPECT_EQ((*reader)->end_ns(), once.back().t_ns + 2 * period);
+  SensorPacket packet;
+  std::vector<events::Event> left;
+  TimeNs previous_end = start;
+  while (true) {
+    Expected<bool> more = (*reader)->Next(&packet);
+    ASSERT_TRUE(more.ok()) << more.status().message();
+    if (!*more) break;
+    EXPECT_EQ(packet.t_begin_ns, previous_end);  // the clock goes on across the seams
+    previous_end = packet.t_end_ns;
+    left.insert(left.end(), packet.left.begin(), packet.left.end());
+  }
+  ASSERT_EQ(left.size(), 3 * once.size());
+  for (std::size_t pass = 0; pass < 3; ++pass) {
+    for (std::size_t i : {std::size_t{0}, once.size() / 2, once.size() - 1}) {
+      events::Event expected = once[i];
+      expected.t_ns += static_cast<TimeNs>(pass) * period;
+      EXPECT_EQ(left[pass * once.size() + i], expected) << "pass " << pass << ", event " << i;
+    }
+  }
+  // Seeking into the second pass reads on from there.
+  ASSERT_TRUE((*reader)->Seek(start + period + 20 * kNsPerMs).ok());
+  ASSERT_TRUE((*reader)->Next(&packet).ok());
+  EXPECT_EQ(packet.t_begin_ns, start + period + 20 * kNsPerMs);
+  ASSERT_FALSE(packet.left.empty());
+  EXPECT_GE(packet.left.front().t_ns, packet.t_begin_ns);
+}
+
 TEST(Sequence, WrittenDescriptionReadsBack) {
   const auto dir = testing::ScratchDir();
   SequenceDescription d;

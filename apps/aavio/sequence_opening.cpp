@@ -2,7 +2,8 @@
 
 namespace aavio::cli {
 
-Expected<OpenedSequence> OpenSequence(const std::string& path, const std::string& calibration) {
+Expected<OpenedSequence> OpenSequence(const std::string& path, const std::string& calibration,
+                                      int passes) {
   Expected<io::SequenceDescription> description = io::DescribeSequence(path, calibration);
   if (!description) return description.status();
   if (description->calibration.empty()) {
@@ -13,6 +14,7 @@ Expected<OpenedSequence> OpenSequence(const std::string& path, const std::string
   io::SequenceReaderOptions options;
   options.stream.width = loaded->rig.width();
   options.stream.height = loaded->rig.height();
+  options.passes = passes;
   Expected<std::unique_ptr<io::SequenceReader>> reader =
       io::SequenceReader::Open(*description, options);
   if (!reader) return reader.status();

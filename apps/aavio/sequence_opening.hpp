@@ -18,7 +18,9 @@ struct OpenedSequence {
   std::unique_ptr<io::SequenceReader> reader;
 };
 
-Expected<OpenedSequence> OpenSequence(const std::string& path, const std::string& calibration);
+/// `passes`: read the sequence that many times back to back (io::SequenceReaderOptions).
+Expected<OpenedSequence> OpenSequence(const std::string& path, const std::string& calibration,
+                                      int passes = 1);
 
 /// The ground truth the sequence at `path` names, for evaluating a run of it.
 Expected<recording::RunGroundTruth> LoadRunGroundTruth(const std::string& path);
