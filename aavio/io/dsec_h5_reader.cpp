@@ -202,20 +202,31 @@ Expected<std::unique_ptr<DsecH5EventStream>> DsecH5EventStream::Open(const std::
     h5::Handle d(H5Dopen2(s->file.get(), "/ms_to_idx", H5P_DEFAULT), H5Dclose);
     h5::Handle space(H5Dget_space(d.get()), H5Sclose);
     const hssize_t m = H5Sget_simple_extent_npoints(space.get());
-    s->ms_to_idx.resize(m > 0 ? static_cast<std::size_t>(m) : 0);
-    if (h5::CheckReadable(d.get(), path, "/ms_to_idx").ok() && m > 0 &&
-        H5Dread(d.get(), H5T_NATIVE_UINT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, s->ms_to_idx.data()) >=
-            0) {
-      const bool monotone = std::is_sorted(s->ms_to_idx.begin(), s->ms_to_idx.end()) &&
-                            s->ms_to_idx.back() <= s->count;
-      if (!monotone) {
-        s->ms_to_idx.clear();
-        notes = "; ms_to_idx inconsistent, ignored";
-      }
+    // One entry per millisecond up to the last event: a longer index is corrupt, and is not
+    // allocated (a file declared 2^50 entries; found by fuzzing).
+    std::int64_t max_entries = 2;
+    if (s->count > 0) {
+      Expected<std::int64_t> last = s->ReadT(s->count - 1);
+      if (last && *last > 0) max_entries = *last / 1000 + 2;
+    }
+    if (m > max_entries) {
+      notes = "; ms_to_idx longer than the recording, ignored";
     } else {
-      h5::TakeErrorMessage();
-      s->ms_to_idx.clear();
-      notes = "; ms_to_idx unreadable, ignored";
+      s->ms_to_idx.resize(m > 0 ? static_cast<std::size_t>(m) : 0);
+      if (h5::CheckReadable(d.get(), path, "/ms_to_idx").ok() && m > 0 &&
+          H5Dread(d.get(), H5T_NATIVE_UINT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, s->ms_to_idx.data()) >=
+              0) {
+        const bool monotone = std::is_sorted(s->ms_to_idx.begin(), s->ms_to_idx.end()) &&
+                              s->ms_to_idx.back() <= s->count;
+        if (!monotone) {
+          s->ms_to_idx.clear();
+          notes = "; ms_to_idx inconsistent, ignored";
+        }
+      } else {
+        h5::TakeErrorMessage();
+        s->ms_to_idx.clear();
+        notes = "; ms_to_idx unreadable, ignored";
+      }
     }
   }
 

@@ -162,6 +162,17 @@ TEST(DsecH5, AbsurdElementTypesAreACorruptFileNotAnOverflow) {
       << s.status().message();
 }
 
+TEST(DsecH5, AnIndexLongerThanTheRecordingIsIgnoredNotAllocated) {
+  // Found by fuzzing: /ms_to_idx declaring 2^50 entries was allocated before it was checked.
+  auto s = DsecH5EventStream::Open(Fixture("huge_ms_to_idx.h5"), {});
+  ASSERT_TRUE(s.ok()) << s.status().message();
+  EXPECT_NE((*s)->info().description.find("ms_to_idx longer than the recording, ignored"),
+            std::string::npos)
+      << (*s)->info().description;
+  EXPECT_EQ(testing::ReadAllOf(**s, kNsPerMs).size(),
+            testing::ExpectedEvents("huge_ms_to_idx").size());
+}
+
 TEST(DsecH5, ReadsRectifyMap) {
   Expected<cv::Mat> map = ReadDsecRectifyMap(Fixture("rectify_map.h5"));
   ASSERT_TRUE(map.ok()) << map.status().message();
