@@ -4,6 +4,7 @@
 
 #include <random>
 
+#include "aavio/geometry/random_draws.hpp"
 #include "tests/fixtures/cameras.hpp"
 
 namespace aavio::geometry {
@@ -19,7 +20,7 @@ TEST_P(CameraModelTest, DistortionJacobianMatchesFiniteDifferences) {
   std::mt19937 rng(1);
   std::uniform_real_distribution<double> u(-0.6, 0.6);
   for (int i = 0; i < 200; ++i) {
-    const Eigen::Vector2d x(u(rng), u(rng));
+    const Eigen::Vector2d x = DrawYx(u, rng);
     Eigen::Matrix2d J;
     cam.Distort(x, &J);
     Eigen::Matrix2d numeric;

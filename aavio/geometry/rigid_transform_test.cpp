@@ -4,13 +4,15 @@
 
 #include <random>
 
+#include "aavio/geometry/random_draws.hpp"
+
 namespace aavio::geometry {
 namespace {
 
 RigidTransform RandomTransform(std::mt19937& rng) {
   std::uniform_real_distribution<double> u(-1.0, 1.0);
-  return {ExpSO3(Eigen::Vector3d(u(rng), u(rng), u(rng)) * 2.0),
-          Eigen::Vector3d(u(rng), u(rng), u(rng)) * 5.0};
+  const Eigen::Matrix3d R = ExpSO3(DrawZyx(u, rng) * 2.0);
+  return {R, DrawZyx(u, rng) * 5.0};
 }
 
 double Distance(const RigidTransform& a, const RigidTransform& b) {

@@ -15,8 +15,8 @@ Eigen::Vector3d RandomVector(std::mt19937& rng, double scale) {
 TEST(Rotation, ExpLogRoundTripOverTheWholeRange) {
   std::mt19937 rng(7);
   for (int i = 0; i < 1000; ++i) {
-    Eigen::Vector3d w = RandomVector(rng, 1.0).normalized() *
-                        std::uniform_real_distribution<double>(0.0, M_PI - 1e-6)(rng);
+    const double angle = std::uniform_real_distribution<double>(0.0, M_PI - 1e-6)(rng);
+    Eigen::Vector3d w = RandomVector(rng, 1.0).normalized() * angle;
     if (i == 0) w = Eigen::Vector3d::Zero();
     if (i == 1) w = Eigen::Vector3d(1e-12, -2e-12, 0.0);
     const Eigen::Matrix3d R = ExpSO3(w);

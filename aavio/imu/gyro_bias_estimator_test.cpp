@@ -1,10 +1,11 @@
 #include "aavio/imu/gyro_bias_estimator.hpp"
 
+#include <gtest/gtest.h>
+
 #include <functional>
 #include <random>
 
-#include <gtest/gtest.h>
-
+#include "aavio/geometry/random_draws.hpp"
 #include "aavio/geometry/rotation.hpp"
 #include "aavio/imu/gyro_preintegration.hpp"
 
@@ -19,7 +20,7 @@ std::vector<ImuSample> Readings(const std::function<Eigen::Vector3d(double)>& om
   std::normal_distribution<double> n(0.0, noise);
   std::vector<ImuSample> out;
   for (TimeNs t = 0; t <= SecondsToNs(duration_s); t += kNsPerMs) {
-    const Eigen::Vector3d w = omega(NsToSeconds(t)) + bias + Eigen::Vector3d(n(rng), n(rng), n(rng));
+    const Eigen::Vector3d w = omega(NsToSeconds(t)) + bias + geometry::DrawZyx(n, rng);
     out.push_back({t, w, Eigen::Vector3d::Zero()});
   }
   return out;
@@ -30,7 +31,8 @@ TEST(GyroBiasEstimator, StaticInitTakesTheMeanOfAStillInterval) {
   config.bias_mode = GyroBiasMode::kStaticInit;
   config.static_init_s = 1.0;
   const Eigen::Vector3d bias(0.002, -0.001, 0.0015);
-  const auto samples = Readings([](double) { return Eigen::Vector3d::Zero(); }, bias, 0.005, 2.0, 1);
+  const auto samples =
+      Readings([](double) { return Eigen::Vector3d::Zero(); }, bias, 0.005, 2.0, 1);
   GyroBiasEstimator estimator(config, 0);
   EXPECT_FALSE(estimator.static_init_done());
   estimator.AddSamples(samples);
@@ -43,9 +45,9 @@ TEST(GyroBiasEstimator, StaticInitRefusesAMovingStart) {
   ImuConfig config;
   config.bias_mode = GyroBiasMode::kStaticInit;
   config.gyro_bias_rad_s = {0.001, 0.0, 0.0};
-  const auto samples = Readings(
-      [](double t) { return Eigen::Vector3d(0.0, 0.5 * std::sin(6.0 * t), 0.0); },
-      Eigen::Vector3d(0.002, 0.0, 0.0), 0.005, 2.0, 2);
+  const auto samples =
+      Readings([](double t) { return Eigen::Vector3d(0.0, 0.5 * std::sin(6.0 * t), 0.0); },
+               Eigen::Vector3d(0.002, 0.0, 0.0), 0.005, 2.0, 2);
   GyroBiasEstimator estimator(config, 0);
   estimator.AddSamples(samples);
   ASSERT_TRUE(estimator.static_init_done());
@@ -69,8 +71,7 @@ TEST(GyroBiasEstimator, OnlineRecoversTheBiasFromTrackedRotations) {
   const TimeNs tick = 10 * kNsPerMs;
   Eigen::Matrix3d error_prev = Eigen::Matrix3d::Identity();
   for (TimeNs t = 0; t + tick <= SecondsToNs(6.0); t += tick) {
-    const Eigen::Matrix3d error =
-        geometry::ExpSO3(Eigen::Vector3d(pose_noise(rng), pose_noise(rng), pose_noise(rng)));
+    const Eigen::Matrix3d error = geometry::ExpSO3(geometry::DrawZyx(pose_noise, rng));
     const Eigen::Matrix3d tracked = error_prev.transpose() *
                                     *IntegrateGyro(truth, t, t + tick, Eigen::Vector3d::Zero()) *
                                     error;
@@ -84,8 +85,9 @@ TEST(GyroBiasEstimator, FixedModeNeverChanges) {
   ImuConfig config;
   config.gyro_bias_rad_s = {0.0, 0.003, 0.0};
   GyroBiasEstimator estimator(config, 0);
-  const std::vector<ImuSample> samples = {{0, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()},
-                                          {kNsPerMs * 20, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()}};
+  const std::vector<ImuSample> samples = {
+      {0, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()},
+      {kNsPerMs * 20, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()}};
   for (int i = 0; i < 30; ++i)
     estimator.AddTrackedTick(samples, 0, 10 * kNsPerMs,
                              geometry::ExpSO3(Eigen::Vector3d(0.001, 0, 0)), true);

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "aavio/geometry/random_draws.hpp"
+
 namespace aavio::sim {
 
 namespace {
@@ -22,10 +24,11 @@ void AddClutter(Scene* scene, std::mt19937_64& rng, const Eigen::Vector3d& centr
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   const Eigen::Vector3d f = Forward(yaw_rad), r = Right(yaw_rad);
   for (int k = 0; k < count; ++k) {
-    const Eigen::Vector3d size(0.05 + 0.25 * unit(rng), 0.05 + 0.2 * unit(rng),
-                               0.03 + 0.25 * unit(rng));
-    const Eigen::Vector3d at = centre + r * (unit(rng) - 0.5) * (width - size.x()) +
-                               f * (unit(rng) - 0.5) * (depth - size.y());
+    const Eigen::Vector3d s = geometry::DrawZyx(unit, rng);
+    const Eigen::Vector3d size(0.05 + 0.25 * s.x(), 0.05 + 0.2 * s.y(), 0.03 + 0.25 * s.z());
+    const Eigen::Vector2d p = geometry::DrawYx(unit, rng);  // across (x) and along (y) the shelf
+    const Eigen::Vector3d at =
+        centre + r * (p.x() - 0.5) * (width - size.x()) + f * (p.y() - 0.5) * (depth - size.y());
     const double turn = yaw_rad + 0.6 * (unit(rng) - 0.5);
     AddStandingBox(scene, at, kUp, Forward(turn), size,
                    {RandomTexture(rng, 0.01, 0.06), RandomTexture(rng, 0.01, 0.06)});

@@ -4,6 +4,7 @@
 #include <random>
 
 #include "aavio/common/config_fields.hpp"
+#include "aavio/geometry/random_draws.hpp"
 
 namespace aavio::sim {
 
@@ -46,7 +47,7 @@ Expected<std::vector<imu::ImuSample>> SynthesizeImu(const MotionSpline& spline,
   AAVIO_RETURN_IF_ERROR(model.Validate());
   std::mt19937_64 rng(seed);
   std::normal_distribution<double> normal(0.0, 1.0);
-  auto noise = [&] { return Eigen::Vector3d(normal(rng), normal(rng), normal(rng)); };
+  auto noise = [&] { return geometry::DrawZyx(normal, rng); };
 
   const double dt = 1.0 / model.rate_hz;
   const double gyro_sigma = model.gyro_noise_density * std::sqrt(model.rate_hz);

@@ -54,7 +54,8 @@ std::vector<geometry::StampedPose> DrivingMotion(double duration_s, std::uint64_
   // Turns: yaw rate bumps of ±0.25 rad/s lasting ~4 s.
   std::vector<std::pair<double, double>> turns;  // (centre time, peak yaw rate)
   for (double t = 3.0; t < duration_s; t += 6.0 + 6.0 * unit(rng)) {
-    turns.emplace_back(t, (unit(rng) < 0.5 ? -1.0 : 1.0) * (0.15 + 0.15 * unit(rng)));
+    const double sign = unit(rng) < 0.5 ? -1.0 : 1.0;
+    turns.emplace_back(t, sign * (0.15 + 0.15 * unit(rng)));
   }
   const Wave pitch(rng, 0.01, 0.5, 2.0), roll(rng, 0.01, 0.5, 2.0), bounce(rng, 0.02, 1.0, 3.0);
   auto speed_at = [&](double t) {

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <random>
 
+#include "aavio/geometry/random_draws.hpp"
 #include "aavio/sim/furniture.hpp"
 
 namespace aavio::sim {
@@ -53,8 +54,10 @@ Scene BuildRoom(std::uint64_t seed) {
   }
   // Objects on the floor, 0.8–3.6 m ahead of the start.
   for (int k = 0; k < 9; ++k) {
-    const Eigen::Vector3d size(0.2 + 0.5 * unit(rng), 0.2 + 0.5 * unit(rng), 0.2 + 0.9 * unit(rng));
-    const Eigen::Vector3d base(-1.8 + 3.6 * unit(rng), y_floor, 0.8 + 2.8 * unit(rng));
+    const Eigen::Vector3d s = geometry::DrawZyx(unit, rng);
+    const Eigen::Vector3d size(0.2 + 0.5 * s.x(), 0.2 + 0.5 * s.y(), 0.2 + 0.9 * s.z());
+    const Eigen::Vector2d b = geometry::DrawYx(unit, rng);  // x and z on the floor
+    const Eigen::Vector3d base(-1.8 + 3.6 * b.x(), y_floor, 0.8 + 2.8 * b.y());
     const double yaw = unit(rng) * M_PI;
     AddStandingBox(&scene, base, -Y, Eigen::Vector3d(std::sin(yaw), 0, std::cos(yaw)), size,
                    {RandomTexture(rng, 0.03, 0.12), RandomTexture(rng, 0.03, 0.12)});
@@ -83,15 +86,18 @@ Scene BuildHall(std::uint64_t seed) {
       MakeQuad({x0, y_floor, z0}, Z * (z1 - z0), -Y * height, RandomTexture(rng, 0.2, 0.8)));
   scene.AddQuad(
       MakeQuad({x1, y_floor, z0}, Z * (z1 - z0), -Y * height, RandomTexture(rng, 0.2, 0.8)));
-  for (int k = 0; k < 6; ++k) {  // pillars
-    const Eigen::Vector3d base(-8 + 16 * unit(rng), y_floor, -8 + 16 * unit(rng));
+  for (int k = 0; k < 6; ++k) {                             // pillars
+    const Eigen::Vector2d b = geometry::DrawYx(unit, rng);  // x and z on the floor
+    const Eigen::Vector3d base(-8 + 16 * b.x(), y_floor, -8 + 16 * b.y());
     if (std::hypot(base.x(), base.z()) < 3.0) continue;  // keep the take-off area clear
     AddStandingBox(&scene, base, -Y, Z, {0.6, 0.6, height}, {RandomTexture(rng, 0.1, 0.4)});
   }
-  for (int k = 0; k < 14; ++k) {  // crates and nets
-    const Eigen::Vector3d base(-8 + 16 * unit(rng), y_floor, -8 + 16 * unit(rng));
+  for (int k = 0; k < 14; ++k) {                            // crates and nets
+    const Eigen::Vector2d b = geometry::DrawYx(unit, rng);  // x and z on the floor
+    const Eigen::Vector3d base(-8 + 16 * b.x(), y_floor, -8 + 16 * b.y());
     if (std::hypot(base.x(), base.z()) < 2.5) continue;
-    const Eigen::Vector3d size(0.5 + 1.5 * unit(rng), 0.5 + 1.5 * unit(rng), 0.4 + 2.0 * unit(rng));
+    const Eigen::Vector3d s = geometry::DrawZyx(unit, rng);
+    const Eigen::Vector3d size(0.5 + 1.5 * s.x(), 0.5 + 1.5 * s.y(), 0.4 + 2.0 * s.z());
     const double yaw = unit(rng) * M_PI;
     AddStandingBox(&scene, base, -Y, Eigen::Vector3d(std::sin(yaw), 0, std::cos(yaw)), size,
                    {RandomTexture(rng, 0.05, 0.3), RandomTexture(rng, 0.05, 0.3)});
@@ -140,8 +146,10 @@ Scene BuildLab(std::uint64_t seed) {
   AddStandingBox(&scene, {3.15, y_floor, 1.2}, up, Eigen::Vector3d::UnitX(), {0.8, 0.6, 1.2},
                  {RandomTexture(rng, 0.05, 0.2), RandomTexture(rng, 0.02, 0.1)});
   for (int k = 0; k < 3; ++k) {
-    const Eigen::Vector3d size(0.3 + 0.4 * unit(rng), 0.3 + 0.4 * unit(rng), 0.2 + 0.4 * unit(rng));
-    const Eigen::Vector3d base(1.2 + 1.6 * unit(rng), y_floor, 2.0 + 0.8 * unit(rng));
+    const Eigen::Vector3d s = geometry::DrawZyx(unit, rng);
+    const Eigen::Vector3d size(0.3 + 0.4 * s.x(), 0.3 + 0.4 * s.y(), 0.2 + 0.4 * s.z());
+    const Eigen::Vector2d b = geometry::DrawYx(unit, rng);  // x and z on the floor
+    const Eigen::Vector3d base(1.2 + 1.6 * b.x(), y_floor, 2.0 + 0.8 * b.y());
     const double yaw = unit(rng) * M_PI;
     AddStandingBox(&scene, base, up, Eigen::Vector3d(std::sin(yaw), 0, std::cos(yaw)), size,
                    {RandomTexture(rng, 0.03, 0.12), RandomTexture(rng, 0.03, 0.12)});

@@ -4,6 +4,7 @@
 
 #include <random>
 
+#include "aavio/geometry/random_draws.hpp"
 #include "aavio/sim/renderer.hpp"
 #include "tests/fixtures/cameras.hpp"
 
@@ -62,16 +63,17 @@ TEST(Scene, BvhFindsTheSameNearestHitAsBruteForce) {
   std::uniform_real_distribution<double> pos(-10, 10), unit(-1, 1);
   Scene scene;
   for (int i = 0; i < 300; ++i) {
-    const Eigen::Vector3d n = Eigen::Vector3d(unit(rng), unit(rng), unit(rng)).normalized();
+    const Eigen::Vector3d n = geometry::DrawZyx(unit, rng).normalized();
     const Eigen::Vector3d u = n.unitOrthogonal(), v = n.cross(u);
-    scene.AddQuad(Plane({pos(rng), pos(rng), pos(rng)}, u, v, 1.0 + 3.0 * (unit(rng) + 1.0)));
+    const double side = 1.0 + 3.0 * (unit(rng) + 1.0);  // drawn before the centre
+    scene.AddQuad(Plane({pos(rng), pos(rng), pos(rng)}, u, v, side));
   }
   scene.AddBox({geometry::ExpSO3({0.1, 0.2, 0.3}), {1, 2, 3}}, {2, 1, 3}, {Texture{}});
   scene.Build();
   int hits = 0;
   for (int k = 0; k < 2000; ++k) {
-    const Eigen::Vector3d o(pos(rng), pos(rng), pos(rng));
-    const Eigen::Vector3d dir = Eigen::Vector3d(unit(rng), unit(rng), unit(rng)).normalized();
+    const Eigen::Vector3d o = geometry::DrawZyx(pos, rng);
+    const Eigen::Vector3d dir = geometry::DrawZyx(unit, rng).normalized();
     Hit bvh;
     const bool found = scene.Intersect(o, dir, &bvh);
     // Brute force over every quad.
@@ -154,9 +156,10 @@ TEST(Renderer, RasterisationMatchesRayCasting) {
   std::uniform_real_distribution<double> pos(-4, 4), unit(-1, 1);
   Scene scene;
   for (int i = 0; i < 60; ++i) {
-    const Eigen::Vector3d n = Eigen::Vector3d(unit(rng), unit(rng), unit(rng)).normalized();
+    const Eigen::Vector3d n = geometry::DrawZyx(unit, rng).normalized();
     const Eigen::Vector3d u = n.unitOrthogonal(), v = n.cross(u);
-    Quad q = Plane({pos(rng), pos(rng), pos(rng) + 3.0}, u, v, 0.5 + 2.0 * (unit(rng) + 1.0));
+    const double side = 0.5 + 2.0 * (unit(rng) + 1.0);  // drawn before the centre
+    Quad q = Plane({pos(rng), pos(rng), pos(rng) + 3.0}, u, v, side);
     q.texture.seed = static_cast<std::uint64_t>(i);
     scene.AddQuad(q);
   }

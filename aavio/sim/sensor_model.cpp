@@ -6,6 +6,7 @@
 #include <numbers>
 #include <random>
 
+#include "aavio/geometry/random_draws.hpp"
 #include "aavio/geometry/rotation.hpp"
 #include "aavio/io/config_yaml.hpp"
 #include "aavio/sim/presets.hpp"
@@ -266,8 +267,8 @@ Expected<geometry::StereoRig> PerturbCalibration(const geometry::StereoRig& true
 
   // The right camera believed turned by δR: T_right_left' = δR·T_right_left, and the
   // rectification computed from it, R_rect_right' = R_rect_right·δRᵀ.
-  Eigen::Vector3d axis(unit(rng) - 0.5, unit(rng) - 0.5, unit(rng) - 0.5);
-  axis.normalize();
+  const Eigen::Vector3d axis =
+      (geometry::DrawZyx(unit, rng) - Eigen::Vector3d::Constant(0.5)).normalized();
   const Eigen::Matrix3d dR = geometry::ExpSO3(axis * errors.rotation_error_deg * kDegToRad);
   const double baseline = 1.0 + sign() * errors.baseline_error;
   geometry::RigidTransform T_right_left = true_rig.T_right_left();

@@ -8,6 +8,7 @@
 #include <opencv2/imgproc.hpp>
 #include <random>
 
+#include "aavio/geometry/random_draws.hpp"
 #include "aavio/geometry/rotation.hpp"
 #include "aavio/tracking/synthetic_scene.hpp"
 
@@ -105,7 +106,7 @@ TEST(Registration, ConvergesFromTwoDegreesAndFiveCentimetres) {
     double worst_angle = 0.0;
     for (int trial = 0; trial < trials; ++trial) {
       // A perturbation of 2° about a random axis and 5 cm in a random direction.
-      Eigen::Vector3d axis(unit(rng), unit(rng), unit(rng)), dir(unit(rng), unit(rng), unit(rng));
+      const Eigen::Vector3d axis = geometry::DrawZyx(unit, rng), dir = geometry::DrawZyx(unit, rng);
       geometry::RigidTransform start = truth;
       start.R = geometry::ExpSO3(axis.normalized() * (2.0 * M_PI / 180.0)) * truth.R;
       start.t = truth.t + 0.05 * dir.normalized();

@@ -24,7 +24,8 @@ inline std::vector<Eigen::Vector3d> EdgeMap(std::uint64_t seed) {
   std::vector<Eigen::Vector3d> points;
   for (int s = 0; s < 60; ++s) {
     const double depth = z(rng);
-    const Eigen::Vector3d c(x(rng) * depth, y(rng) * depth, depth);
+    const double v = y(rng), u = x(rng);  // y first: the order this scene was first drawn in
+    const Eigen::Vector3d c(u * depth, v * depth, depth);
     const double angle = a(rng);
     const Eigen::Vector3d dir(std::cos(angle), std::sin(angle), 0.2 * std::cos(3 * angle));
     for (double l = -0.1; l <= 0.1; l += 0.005)
