@@ -1,6 +1,7 @@
 #include "aavio/io/ply.hpp"
 
 #include <cctype>
+#include <cstdio>
 #include <fstream>
 #include <sstream>
 
@@ -21,6 +22,25 @@ std::string Quoted(const std::string& line) {
   return out + (line.size() > 40 ? "...\"" : "\"");
 }
 
+void WriteHeader(std::ostream& out, const std::string& comment, std::size_t vertices) {
+  out << "ply\nformat binary_little_endian 1.0\n";
+  std::istringstream lines(comment);
+  for (std::string line; std::getline(lines, line);)
+    out << "comment " << line << "\n";
+  out << "element vertex " << vertices << "\n";
+  for (const char* property : kProperties)
+    out << property << "\n";
+  out << "end_header\n";
+}
+
+void WriteVertices(std::ostream& out, std::span<const Eigen::Vector3f> points,
+                   std::span<const Rgb> colours) {
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    out.write(reinterpret_cast<const char*>(points[i].data()), 3 * sizeof(float));
+    out.write(reinterpret_cast<const char*>(colours[i].data()), 3);
+  }
+}
+
 }  // namespace
 
 Status WritePly(const std::string& path, std::span<const Eigen::Vector3f> points,
@@ -31,19 +51,46 @@ Status WritePly(const std::string& path, std::span<const Eigen::Vector3f> points
   }
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
   if (!out) return IoError(path + ": cannot write");
-  out << "ply\nformat binary_little_endian 1.0\n";
-  std::istringstream lines(comment);
-  for (std::string line; std::getline(lines, line);)
-    out << "comment " << line << "\n";
-  out << "element vertex " << points.size() << "\n";
-  for (const char* property : kProperties)
-    out << property << "\n";
-  out << "end_header\n";
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    out.write(reinterpret_cast<const char*>(points[i].data()), 3 * sizeof(float));
-    out.write(reinterpret_cast<const char*>(colours[i].data()), 3);
-  }
+  WriteHeader(out, comment, points.size());
+  WriteVertices(out, points, colours);
   return out ? Status::Ok() : IoError(path + ": write failed (disk full?)");
+}
+
+PlyWriter::PlyWriter(std::string path, std::string comment, std::ofstream part)
+    : path_(std::move(path)), comment_(std::move(comment)), part_(std::move(part)) {}
+
+Expected<PlyWriter> PlyWriter::Open(const std::string& path, std::string comment) {
+  std::ofstream part(path + ".part", std::ios::binary | std::ios::trunc);
+  if (!part) return IoError(path + ".part: cannot write");
+  return PlyWriter(path, std::move(comment), std::move(part));
+}
+
+Status PlyWriter::Append(std::span<const Eigen::Vector3f> points, std::span<const Rgb> colours) {
+  if (points.size() != colours.size()) {
+    return InvalidArgument(
+        StrFormat("%s: %zu points but %zu colours", path_.c_str(), points.size(), colours.size()));
+  }
+  if (!part_.is_open()) return FailedPrecondition(path_ + ": already closed");
+  WriteVertices(part_, points, colours);
+  size_ += points.size();
+  return part_ ? Status::Ok() : IoError(path_ + ".part: write failed (disk full?)");
+}
+
+Status PlyWriter::Close() {
+  if (!part_.is_open()) return FailedPrecondition(path_ + ": already closed");
+  part_.close();
+  if (!part_) return IoError(path_ + ".part: write failed (disk full?)");
+  const std::string part_path = path_ + ".part";
+  std::ifstream vertices(part_path, std::ios::binary);
+  std::ofstream out(path_, std::ios::binary | std::ios::trunc);
+  if (!vertices) return IoError(part_path + ": cannot read back");
+  if (!out) return IoError(path_ + ": cannot write");
+  WriteHeader(out, comment_, size_);
+  if (size_ > 0) out << vertices.rdbuf();
+  if (!out) return IoError(path_ + ": write failed (disk full?)");
+  vertices.close();
+  std::remove(part_path.c_str());
+  return Status::Ok();
 }
 
 Expected<ColouredCloud> ReadPly(const std::string& path) {

@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <cstdint>
+#include <fstream>
 #include <span>
 #include <string>
 #include <vector>
@@ -26,6 +27,25 @@ struct ColouredCloud {
 /// (one `comment` line per line of it).
 Status WritePly(const std::string& path, std::span<const Eigen::Vector3f> points,
                 std::span<const Rgb> colours, const std::string& comment = "");
+
+/// Writes a PLY file (the layout above) a batch of points at a time, for clouds too large to hold:
+/// the vertices go to `<path>.part` as they come; Close() writes `path` (header with the count,
+/// then the vertices) and removes the part file. A writer not closed leaves only the part file.
+class PlyWriter {
+ public:
+  /// Creates `<path>.part` (truncating).
+  static Expected<PlyWriter> Open(const std::string& path, std::string comment = "");
+  /// `colours` must have one entry per point.
+  Status Append(std::span<const Eigen::Vector3f> points, std::span<const Rgb> colours);
+  Status Close();
+  std::size_t size() const { return size_; }
+
+ private:
+  PlyWriter(std::string path, std::string comment, std::ofstream part);
+  std::string path_, comment_;
+  std::ofstream part_;
+  std::size_t size_ = 0;
+};
 
 /// Reads a file in the layout WritePly writes (other PLY layouts are refused with what was found).
 Expected<ColouredCloud> ReadPly(const std::string& path);

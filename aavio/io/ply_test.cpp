@@ -2,12 +2,21 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <fstream>
+#include <sstream>
 
 #include "tests/test_utils.hpp"
 
 namespace aavio::io {
 namespace {
+
+std::string Slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  return bytes.str();
+}
 
 TEST(Ply, RoundTripsPointsColoursAndComment) {
   const std::string path = (testing::ScratchDir() / "map.ply").string();
@@ -24,6 +33,40 @@ TEST(Ply, RoundTripsPointsColoursAndComment) {
   ASSERT_TRUE(WritePly(path, {}, {}).ok());
   ASSERT_TRUE(ReadPly(path).ok());
   EXPECT_TRUE(ReadPly(path)->points.empty());
+}
+
+TEST(Ply, WriterStreamsBatchesIntoTheSameFile) {
+  const auto dir = testing::ScratchDir();
+  const std::vector<Eigen::Vector3f> points = {{1.f, 2.f, 3.f}, {4.f, 5.f, 6.f}, {7.f, 8.f, 9.f}};
+  const std::vector<Rgb> colours = {{1, 2, 3}, {4, 5, 6}, {7, 8, 9}};
+  const std::string path = (dir / "streamed.ply").string();
+  Expected<PlyWriter> writer = PlyWriter::Open(path, "streamed");
+  ASSERT_TRUE(writer.ok()) << writer.status().message();
+  ASSERT_TRUE(writer->Append(std::span(points).first(2), std::span(colours).first(2)).ok());
+  ASSERT_TRUE(writer->Append({}, {}).ok());
+  ASSERT_TRUE(writer->Append(std::span(points).last(1), std::span(colours).last(1)).ok());
+  EXPECT_EQ(writer->size(), 3u);
+  // Until it is closed only the part file exists.
+  EXPECT_FALSE(std::filesystem::exists(path));
+  EXPECT_TRUE(std::filesystem::exists(path + ".part"));
+  ASSERT_TRUE(writer->Close().ok());
+  EXPECT_FALSE(std::filesystem::exists(path + ".part"));
+  // Byte for byte what WritePly writes of the whole cloud.
+  const std::string whole = (dir / "whole.ply").string();
+  ASSERT_TRUE(WritePly(whole, points, colours, "streamed").ok());
+  EXPECT_EQ(Slurp(path), Slurp(whole));
+  // Mismatched batches and a second Close are refused; an empty cloud is a valid file.
+  Expected<PlyWriter> empty = PlyWriter::Open(path);
+  ASSERT_TRUE(empty.ok());
+  EXPECT_FALSE(empty->Append(points, std::span(colours).first(1)).ok());
+  ASSERT_TRUE(empty->Close().ok());
+  EXPECT_FALSE(empty->Close().ok());
+  ASSERT_TRUE(ReadPly(path).ok());
+  EXPECT_TRUE(ReadPly(path)->points.empty());
+  // A folder that cannot take the part file: an error naming it.
+  Expected<PlyWriter> nowhere = PlyWriter::Open((dir / "missing" / "map.ply").string());
+  ASSERT_FALSE(nowhere.ok());
+  EXPECT_NE(nowhere.status().message().find("map.ply.part: cannot write"), std::string::npos);
 }
 
 TEST(Ply, RefusesBadFilesWithWhatIsWrong) {

@@ -33,14 +33,15 @@ std::pair<double, double> MemoryMb() {
 }
 
 // What a run writes into its folder.
-constexpr const char* kRunOutputs[] = {run_files::kTrajectory, run_files::kSummary,
-                                       run_files::kTimings,    run_files::kConfig,
-                                       run_files::kCloud,      run_files::kDepthDir};
+constexpr const char* kRunOutputs[] = {
+    run_files::kTrajectory, run_files::kSummary,   run_files::kTimings, run_files::kConfig,
+    run_files::kCloud,      run_files::kCloudPart, run_files::kDepthDir};
 
 }  // namespace
 
 RunRecorder::RunRecorder(RunRecorderOptions options, const geometry::StereoRig& rig,
-                         const pipeline::OdometryConfig& config, io::DepthFolderWriter depth_writer)
+                         const pipeline::OdometryConfig& config, io::DepthFolderWriter depth_writer,
+                         io::PlyWriter cloud_file)
     : options_(std::move(options)),
       config_(config),
       stereo_(mapping::RectifiedStereo::FromRig(rig)),
@@ -53,6 +54,7 @@ RunRecorder::RunRecorder(RunRecorderOptions options, const geometry::StereoRig& 
       // it (rpg 0.5–5 m: 2.5 cm; DSEC: 25 cm).
       cloud_depth_m_(std::min(1.0 / config.mapping.inv_depth_min, 50.0)),
       cloud_(0.005 * cloud_depth_m_),
+      cloud_file_(std::move(cloud_file)),
       colours_(config.mapping.inv_depth_min, config.mapping.inv_depth_max),
       event_gaps_(options_.begin_ns) {}
 
@@ -65,8 +67,11 @@ Expected<std::unique_ptr<RunRecorder>> RunRecorder::Open(RunRecorderOptions opti
   Expected<io::DepthFolderWriter> depth =
       io::DepthFolderWriter::Create((out / run_files::kDepthDir).string());
   if (!depth) return depth.status();
+  Expected<io::PlyWriter> cloud = io::PlyWriter::Open((out / run_files::kCloud).string(),
+                                                      "aavio global map (world frame, metres)");
+  if (!cloud) return cloud.status();
   std::unique_ptr<RunRecorder> recorder(
-      new RunRecorder(std::move(options), rig, config, std::move(*depth)));
+      new RunRecorder(std::move(options), rig, config, std::move(*depth), std::move(*cloud)));
   return recorder;
 }
 
@@ -118,7 +123,16 @@ void RunRecorder::AddCycleReport(const mapping::MappingCycleReport& r) {
 
 Status RunRecorder::AddConfirmedMap(const mapping::LocalMap& map,
                                     const events::Observation* observation, bool score_written) {
-  cloud_.Add(map, cloud_depth_m_);
+  std::vector<mapping::CloudPoint> added;
+  cloud_.Add(map, cloud_depth_m_, &added);
+  std::vector<Eigen::Vector3f> points;
+  std::vector<io::Rgb> rgb;
+  for (const mapping::CloudPoint& p : added) {
+    const cv::Vec3b c = colours_(static_cast<double>(p.inv_depth));
+    points.push_back(p.p_world);
+    rgb.push_back({c[2], c[1], c[0]});
+  }
+  AAVIO_RETURN_IF_ERROR(cloud_file_.Append(points, rgb));
   ++confirmed_maps_;
   confirmed_points_ += map.points.size();
   if ((confirmed_maps_ - 1) % depth_every_ != 0) return Status::Ok();
@@ -233,14 +247,7 @@ Expected<RunRecord> RunRecorder::Finish(bool interrupted, TimeNs end_ns,
   }
   AAVIO_RETURN_IF_ERROR(
       io::WriteTextFile((out / run_files::kConfig).string(), options_.config_yaml));
-  std::vector<io::Rgb> rgb;
-  rgb.reserve(cloud_.points().size());
-  for (const float rho : cloud_.inv_depth()) {
-    const cv::Vec3b c = colours_(static_cast<double>(rho));
-    rgb.push_back({c[2], c[1], c[0]});
-  }
-  AAVIO_RETURN_IF_ERROR(io::WritePly((out / run_files::kCloud).string(), cloud_.points(), rgb,
-                                     "aavio global map (world frame, metres)"));
+  AAVIO_RETURN_IF_ERROR(cloud_file_.Close());
   AAVIO_RETURN_IF_ERROR(depth_writer_.Finish());
 
   // Accuracy against the ground truth (what `aavio eval --run` computes, se3-aligned).
@@ -290,7 +297,7 @@ Expected<RunRecord> RunRecorder::Finish(bool interrupted, TimeNs end_ns,
   s["depth_maps_written"] = depth_writer_.count();
   s["mean_map_points"] =
       confirmed_maps_ > 0 ? static_cast<double>(confirmed_points_) / confirmed_maps_ : 0.0;
-  s["map_points_global"] = cloud_.points().size();
+  s["map_points_global"] = cloud_.size();
   const auto [rss_mb, peak_mb] = MemoryMb();
   s["peak_rss_mb"] = peak_mb;
   s["memory"] = {{"peak_rss_mb", peak_mb},

@@ -19,6 +19,7 @@
 #include "aavio/eval/sample_ceiling.hpp"
 #include "aavio/geometry/stereo_rig.hpp"
 #include "aavio/io/depth_folder_writer.hpp"
+#include "aavio/io/ply.hpp"
 #include "aavio/mapping/global_cloud.hpp"
 #include "aavio/pipeline/mapping_front_end.hpp"
 #include "aavio/pipeline/odometry.hpp"
@@ -39,6 +40,7 @@ inline constexpr char kSummary[] = "summary.json";
 inline constexpr char kTimings[] = "timings.csv";
 inline constexpr char kConfig[] = "config.yaml";
 inline constexpr char kCloud[] = "map.ply";
+inline constexpr char kCloudPart[] = "map.ply.part";  ///< map.ply's points while the run goes
 inline constexpr char kDepthDir[] = "depth";
 }  // namespace run_files
 
@@ -100,7 +102,8 @@ class RunRecorder {
 
  private:
   RunRecorder(RunRecorderOptions options, const geometry::StereoRig& rig,
-              const pipeline::OdometryConfig& config, io::DepthFolderWriter depth_writer);
+              const pipeline::OdometryConfig& config, io::DepthFolderWriter depth_writer,
+              io::PlyWriter cloud_file);
   void AddRepresentation(TimeNs t_ns, const events::RepresentationTimings& t);
   void AddCycleReport(const mapping::MappingCycleReport& r);
   /// A confirmed map: into the cloud, and every depth_every_-th into depth/ (scored there in the
@@ -117,6 +120,7 @@ class RunRecorder {
   int depth_every_;
   double cloud_depth_m_;
   mapping::GlobalCloud cloud_;
+  io::PlyWriter cloud_file_;  ///< the cloud's points go to disk as they come
   InverseDepthColours colours_;
   std::optional<RunGroundTruth> truth_;
   std::vector<geometry::StampedPose> gt_poses_;

@@ -114,6 +114,7 @@ TEST(RunRecorder, OdometryRunWritesEverythingAndScoresDepthAsTheFilesScore) {
   ASSERT_TRUE(cloud.ok()) << cloud.status().message();
   EXPECT_EQ(cloud->points.size(), summary["map_points_global"].get<std::size_t>());
   EXPECT_GT(cloud->points.size(), 100u);
+  EXPECT_FALSE(fs::exists(out / "map.ply.part"));  // streamed there while the run went
 
   // Depth scored in memory equals depth scored from the written depth/.
   ASSERT_TRUE(record->depth.has_value());
