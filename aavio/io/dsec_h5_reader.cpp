@@ -133,6 +133,19 @@ Expected<std::unique_ptr<DsecH5EventStream>> DsecH5EventStream::Open(const std::
     return ParseError(path + ": not a readable HDF5 file (truncated or not HDF5" +
                       (detail.empty() ? "" : ": " + detail) + ")");
   }
+  // The whole open, and the first and last event of each dataset, in a child first.
+  AAVIO_RETURN_IF_ERROR(h5::SurvivesInChild(path, [&] {
+    Expected<std::unique_ptr<DsecH5EventStream>> probe = OpenHere(path, options);
+    if (probe.ok() && (*probe)->s_->count > 0) {
+      State& s = *(*probe)->s_;
+      if (s.ReadRange(0, 1).ok()) (void)s.ReadRange(s.count - 1, 1);
+    }
+  }));
+  return OpenHere(path, options);
+}
+
+Expected<std::unique_ptr<DsecH5EventStream>> DsecH5EventStream::OpenHere(
+    const std::string& path, const StreamOptions& options) {
   auto s = std::make_unique<State>();
   s->path = path;
   s->options = options;
@@ -304,14 +317,9 @@ Status DsecH5EventStream::Seek(TimeNs t_ns) {
 
 namespace aavio::io {
 
-Expected<cv::Mat> ReadDsecRectifyMap(const std::string& path) {
-  h5::SilenceErrorPrinting();
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) return NotFound(path + ": no such file");
-  if (H5Fis_hdf5(path.c_str()) <= 0) {
-    h5::TakeErrorMessage();
-    return ParseError(path + ": not a readable HDF5 file (truncated or not HDF5)");
-  }
+namespace {
+
+Expected<cv::Mat> ReadRectifyMapHere(const std::string& path) {
   h5::Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
   if (!file.valid() || !h5::LinkExists(file.get(), "/rectify_map")) {
     h5::TakeErrorMessage();
@@ -331,6 +339,20 @@ Expected<cv::Mat> ReadDsecRectifyMap(const std::string& path) {
     return IoError(path + ": reading /rectify_map failed (" + h5::TakeErrorMessage() + ")");
   }
   return map;
+}
+
+}  // namespace
+
+Expected<cv::Mat> ReadDsecRectifyMap(const std::string& path) {
+  h5::SilenceErrorPrinting();
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) return NotFound(path + ": no such file");
+  if (H5Fis_hdf5(path.c_str()) <= 0) {
+    h5::TakeErrorMessage();
+    return ParseError(path + ": not a readable HDF5 file (truncated or not HDF5)");
+  }
+  AAVIO_RETURN_IF_ERROR(h5::SurvivesInChild(path, [&] { (void)ReadRectifyMapHere(path); }));
+  return ReadRectifyMapHere(path);
 }
 
 }  // namespace aavio::io

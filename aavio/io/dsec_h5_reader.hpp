@@ -31,6 +31,9 @@ class DsecH5EventStream final : public EventStream {
  private:
   struct State;
   explicit DsecH5EventStream(std::unique_ptr<State> state);
+  /// Open without the crash probe.
+  static Expected<std::unique_ptr<DsecH5EventStream>> OpenHere(const std::string& path,
+                                                               const StreamOptions& options);
   std::unique_ptr<State> s_;
 };
 

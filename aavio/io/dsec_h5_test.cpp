@@ -1,11 +1,14 @@
 // DSEC-layout HDF5: read files written by h5py + hdf5plugin, and our writer's files read back by
 // h5py (tests/fixtures/check_dsec_h5.py) and by our reader.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cstdio>
+#include <cstdlib>
 
 #include "aavio/io/dsec_h5_reader.hpp"
 #include "aavio/io/dsec_h5_writer.hpp"
+#include "aavio/io/hdf5_util.hpp"
 #include "tests/event_fixtures.hpp"
 #include "tests/test_utils.hpp"
 
@@ -160,6 +163,34 @@ TEST(DsecH5, AbsurdElementTypesAreACorruptFileNotAnOverflow) {
                 "/events/x holds elements of 33554434 bytes, not numbers of 1 to 8 bytes"),
             std::string::npos)
       << s.status().message();
+}
+
+TEST(DsecH5, AFileThatCrashesHdf5ItselfIsAnErrorNotACrash) {
+  // Found by fuzzing: a corrupt local heap makes HDF5 1.10.8 dereference a failed allocation
+  // inside H5Gopen. The open is tried in a child process first; its crash is reported.
+  const std::string path = AAVIO_SOURCE_DIR "/fuzz/corpus/dsec_h5/regression_corrupt_local_heap.h5";
+  auto s = DsecH5EventStream::Open(path, {});
+  ASSERT_FALSE(s.ok());
+  EXPECT_NE(s.status().message().find(path + ": the HDF5 library crashed ("), std::string::npos)
+      << s.status().message();
+  EXPECT_NE(s.status().message().find("the file is corrupt"), std::string::npos);
+  EXPECT_FALSE(ReadDsecRectifyMap(path).ok());
+}
+
+TEST(DsecH5, AChildThatHangsIsStoppedAndReported) {
+  const Status status = h5::SurvivesInChild(
+      "x.h5",
+      [] {
+        for (;;)
+          pause();
+      },
+      0.2);
+  EXPECT_NE(status.message().find("x.h5: the HDF5 library did not finish reading"),
+            std::string::npos)
+      << status.message();
+  EXPECT_TRUE(h5::SurvivesInChild("x.h5", [] {}).ok());
+  EXPECT_NE(h5::SurvivesInChild("x.h5", [] { std::abort(); }).message().find("crashed (signal 6"),
+            std::string::npos);
 }
 
 TEST(DsecH5, AnIndexLongerThanTheRecordingIsIgnoredNotAllocated) {

@@ -1,6 +1,17 @@
 #include "aavio/io/hdf5_util.hpp"
 
+#include <algorithm>
+#include <chrono>
+#include <csignal>
+#include <cstring>
 #include <string>
+#include <thread>
+
+#if defined(__unix__)
+#include <sys/types.h>
+#include <sys/wait.h>
+#include <unistd.h>
+#endif
 
 namespace aavio::io::h5 {
 
@@ -96,6 +107,50 @@ bool LinkExists(hid_t file, const char* path) {
     }
   }
   return true;
+}
+
+Status SurvivesInChild(const std::string& path, const std::function<void()>& attempt,
+                       double timeout_s) {
+#if defined(__unix__)
+  const pid_t child = fork();
+  if (child < 0) return Status::Ok();  // no probe, as where fork does not exist
+  if (child == 0) {
+    attempt();
+    _exit(0);  // the child only: no atexit handlers, no flush of the caller's buffers
+  }
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+  for (auto wait = std::chrono::microseconds(200);;
+       wait = std::min(2 * wait, std::chrono::microseconds(20'000))) {
+    int status = 0;
+    const pid_t done = waitpid(child, &status, WNOHANG);
+    if (done == child) {
+      if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return Status::Ok();
+      // Killed by a signal, or ended otherwise (a sanitizer's report, an abort handler).
+      const std::string how =
+          WIFSIGNALED(status)
+              ? "signal " + std::to_string(WTERMSIG(status)) + ", " + strsignal(WTERMSIG(status))
+              : "exit status " + std::to_string(WEXITSTATUS(status));
+      return ParseError(path + ": the HDF5 library crashed (" + how +
+                        ") reading the file's structure: the file is corrupt. `h5dump -H " + path +
+                        "` shows where; export or download it again");
+    }
+    if (done < 0) return Status::Ok();  // the child was reaped elsewhere
+    if (std::chrono::steady_clock::now() > deadline) {
+      kill(child, SIGKILL);
+      waitpid(child, &status, 0);
+      return ParseError(path +
+                        ": the HDF5 library did not finish reading the file's structure in " +
+                        std::to_string(static_cast<int>(timeout_s)) +
+                        " s: the file is corrupt (or its file system hangs)");
+    }
+    std::this_thread::sleep_for(wait);
+  }
+#else
+  (void)path;
+  (void)attempt;
+  (void)timeout_s;
+  return Status::Ok();
+#endif
 }
 
 }  // namespace aavio::io::h5

@@ -4,6 +4,7 @@
 
 #include <hdf5.h>
 
+#include <functional>
 #include <string>
 #include <utility>
 
@@ -57,5 +58,15 @@ std::string TakeErrorMessage();
 Status CheckReadable(hid_t dataset, const std::string& file, const std::string& name);
 
 bool LinkExists(hid_t file, const char* path);
+
+/// Runs `attempt` (opening `path` the way the caller is about to) in a forked child process first:
+/// a corrupt file can crash HDF5 1.10 itself (a corrupt local heap makes H5Gopen dereference a
+/// failed allocation) before any check of aavio's sees the file, and the crash should end the
+/// child, not the caller. Ok when the child ends by itself, whatever `attempt` found (the caller
+/// repeats it and reports that); an error naming the file when the child is killed by a signal,
+/// exits otherwise than at the end of `attempt`, or runs past `timeout_s`. Where fork is
+/// unavailable or fails, Ok without a probe.
+Status SurvivesInChild(const std::string& path, const std::function<void()>& attempt,
+                       double timeout_s = 60.0);
 
 }  // namespace aavio::io::h5
