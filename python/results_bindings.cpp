@@ -153,7 +153,8 @@ void BindResults(py::module_& m) {
       .def_property_readonly("position", &Positions, "(N, 3) metres")
       .def_property_readonly("quaternion", &Quaternions, "(N, 4) x y z w")
       .def_readonly("status", &Trajectory::status,
-                    "per pose: 'ok', 'lost' or 'no_map' (empty when read from a file)")
+                    "per pose: 'ok', 'lost', 'no_map' or 'imu' (carried on the IMU alone; empty "
+                    "when read from a file)")
       .def("__len__", [](const Trajectory& t) { return t.poses.size(); })
       .def(
           "write",

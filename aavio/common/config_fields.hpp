@@ -38,6 +38,15 @@ namespace aavio {
 template <typename E>
 struct EnumNames;
 
+/// The name of an enum value as configs write it ("?" for a value without one).
+template <typename E>
+const char* EnumName(E value) {
+  for (const auto& [v, name] : EnumNames<E>::kNames) {
+    if (v == value) return name;
+  }
+  return "?";
+}
+
 /// One value as written in a file or on the command line.
 struct ConfigValue {
   std::string scalar;             ///< the text of a scalar value

@@ -36,6 +36,35 @@ Eigen::Matrix3d ExpSO3(const Eigen::Vector3d& w) {
   return Eigen::Matrix3d::Identity() + a * W + b * W * W;
 }
 
+Eigen::Matrix3d RightJacobianSO3(const Eigen::Vector3d& w) {
+  const double theta2 = w.squaredNorm();
+  const Eigen::Matrix3d W = Hat(w);
+  double b;  // (1 − cos θ) / θ²
+  double c;  // (θ − sin θ) / θ³
+  if (theta2 < 1e-8) {
+    b = 0.5 - theta2 / 24.0;
+    c = 1.0 / 6.0 - theta2 / 120.0;
+  } else {
+    const double theta = std::sqrt(theta2);
+    b = (1.0 - std::cos(theta)) / theta2;
+    c = (theta - std::sin(theta)) / (theta2 * theta);
+  }
+  return Eigen::Matrix3d::Identity() - b * W + c * W * W;
+}
+
+Eigen::Matrix3d InverseRightJacobianSO3(const Eigen::Vector3d& w) {
+  const double theta2 = w.squaredNorm();
+  const Eigen::Matrix3d W = Hat(w);
+  double d;  // 1/θ² − (1 + cos θ) / (2 θ sin θ)
+  if (theta2 < 1e-8) {
+    d = 1.0 / 12.0 + theta2 / 720.0;
+  } else {
+    const double theta = std::sqrt(theta2);
+    d = 1.0 / theta2 - (1.0 + std::cos(theta)) / (2.0 * theta * std::sin(theta));
+  }
+  return Eigen::Matrix3d::Identity() + 0.5 * W + d * W * W;
+}
+
 Eigen::Vector3d LogSO3(const Eigen::Matrix3d& R) {
   // Through the quaternion: numerically well behaved over the whole range, including θ ≈ π.
   Eigen::Quaterniond q(R);

@@ -20,6 +20,10 @@ Eigen::Vector3d Vee(const Eigen::Matrix3d& W);
 Eigen::Matrix3d ExpSO3(const Eigen::Vector3d& w);
 /// Rotation vector of R, angle in [0, π]. Accurate near 0 and near π.
 Eigen::Vector3d LogSO3(const Eigen::Matrix3d& R);
+/// The right Jacobian of SO(3): Exp(w + δ) ≈ Exp(w)·Exp(Jr(w) δ) (Forster et al. 2017, eq. 8).
+Eigen::Matrix3d RightJacobianSO3(const Eigen::Vector3d& w);
+/// Its inverse: Log(Exp(w)·Exp(δ)) ≈ w + Jr⁻¹(w) δ. For |w| < π.
+Eigen::Matrix3d InverseRightJacobianSO3(const Eigen::Vector3d& w);
 
 /// Cayley map (algorithm.md §5.3): R(c) = ((1 − cᵀc) I + 2 c cᵀ + 2 [c]x) / (1 + cᵀc).
 /// c = tan(θ/2)·axis, so R(c) ≈ I + 2[c]x near 0; singular at θ = π.

@@ -12,6 +12,24 @@ Eigen::Vector3d RandomVector(std::mt19937& rng, double scale) {
   return {u(rng), u(rng), u(rng)};
 }
 
+TEST(Rotation, RightJacobiansMatchFiniteDifferences) {
+  std::mt19937 rng(3);
+  for (const double scale : {1e-6, 1e-3, 0.3, 1.5, 3.0}) {
+    for (int i = 0; i < 20; ++i) {
+      const Eigen::Vector3d w = RandomVector(rng, 1.0).normalized() * scale;
+      const Eigen::Matrix3d Jr = RightJacobianSO3(w);
+      for (int k = 0; k < 3; ++k) {
+        const Eigen::Vector3d d = 1e-7 * Eigen::Vector3d::Unit(k);
+        // Exp(w + δ) = Exp(w)·Exp(Jr δ): the column is Log(Exp(w)ᵀ Exp(w + δ)) / |δ|.
+        const Eigen::Vector3d column = LogSO3(ExpSO3(w).transpose() * ExpSO3(w + d)) / 1e-7;
+        EXPECT_LT((column - Jr.col(k)).norm(), 1e-6) << "|w| = " << scale;
+      }
+      EXPECT_LT((InverseRightJacobianSO3(w) * Jr - Eigen::Matrix3d::Identity()).norm(), 1e-9)
+          << "|w| = " << scale;
+    }
+  }
+}
+
 TEST(Rotation, ExpLogRoundTripOverTheWholeRange) {
   std::mt19937 rng(7);
   for (int i = 0; i < 1000; ++i) {

@@ -8,16 +8,16 @@
 ///                  tracked ticks, the bias that makes the pre-integrated rotation equal the
 ///                  tracked one, argmin_b |Log(ΔR_pre(b)ᵀ ΔR_tracked)|² (Gauss–Newton, Jacobian by
 ///                  re-integration); windows do not overlap, and their estimates are averaged
-///                  (running mean, then exponentially with `online_gain`). Over a window, the tracking error enters once, not per tick
-///                  (tracked rotations telescope); an estimate implying more than
-///                  `online_max_rate_rad_s` of change is rejected as a tracking failure.
+///                  (running mean, then exponentially with `online_gain`). Over a window, the
+///                  tracking error enters once, not per tick (tracked rotations telescope); an
+///                  estimate implying more than `online_max_rate_rad_s` of change is rejected as a
+///                  tracking failure.
 /// All rotations here are of the IMU frame.
 
+#include <Eigen/Core>
 #include <deque>
 #include <limits>
 #include <span>
-
-#include <Eigen/Core>
 
 #include "aavio/imu/imu_config.hpp"
 #include "aavio/imu/imu_sample.hpp"

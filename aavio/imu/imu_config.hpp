@@ -1,6 +1,8 @@
 #pragma once
-/// Configuration of the gyroscope prior (algorithm.md §5.6). The IMU–camera extrinsic is part
-/// of the calibration (StereoRig::T_imu_left), not of this config.
+/// Configuration of the IMU's use (algorithm.md §5.6, §5.8): none, the gyroscope prior of the
+/// paper, or the full back-end (velocity, biases and gravity estimated; 6-DoF prediction; the
+/// IMU alone through stretches without events). The IMU–camera extrinsic is part of the
+/// calibration (StereoRig::T_imu_left), not of this config.
 
 #include <array>
 #include <utility>
@@ -9,6 +11,13 @@
 
 namespace aavio::imu {
 
+enum class ImuMode {
+  kOff,   ///< no IMU: constant-velocity prediction (ESVO)
+  kGyro,  ///< the gyroscope's rotation starts each registration [paper]
+  kFull,  ///< + the back-end: velocity, both biases and gravity; full 6-DoF prediction; IMU-only
+          ///< bridging of event-less stretches (as ESVO2 goes beyond the paper)
+};
+
 enum class GyroBiasMode {
   kFixed,       ///< gyro_bias_rad_s as configured [paper: "initialised empirically, not updated"]
   kStaticInit,  ///< mean gyro reading over an initial static interval
@@ -16,7 +25,7 @@ enum class GyroBiasMode {
 };
 
 struct ImuConfig {
-  bool use_gyro_prior = true;  ///< initial rotation of registration from the gyroscope [paper]
+  ImuMode mode = ImuMode::kGyro;
   GyroBiasMode bias_mode = GyroBiasMode::kFixed;
   std::array<double, 3> gyro_bias_rad_s{0.0, 0.0, 0.0};  ///< in the IMU frame ([ICRA] zero)
   double static_init_s = 1.0;  ///< length of the static interval for static_init [s]
@@ -26,11 +35,18 @@ struct ImuConfig {
   /// online: a re-estimate further than this from the current bias is a tracking failure [rad/s]
   double online_max_rate_rad_s = 0.05;
   double online_gain = 0.2;  ///< online: weight of a new window's estimate once warmed up
+  // full mode: the back-end.
+  double window_s = 2.0;                ///< span of tracked poses it estimates over [s]
+  double frame_interval_s = 0.05;       ///< one window frame per this much data time [s]
+  double gyro_noise_density = 0.00292;  ///< rad/s/√Hz (Kalibr's gyroscope_noise_density)
+  double accel_noise_density = 0.044;   ///< m/s²/√Hz (Kalibr's accelerometer_noise_density)
+  /// The longest stretch without events carried on the IMU alone before tracking is lost
+  /// (a standstill the IMU sees as such has no limit) [s].
+  double max_bridge_s = 2.0;
 
   template <typename V>
   void VisitFields(V&& v) {
-    v("use_gyro_prior", use_gyro_prior,
-      "the pre-integrated gyroscope rotation starts each registration (paper)");
+    v("mode", mode, "off (no IMU), gyro (gyroscope prior: the paper) or full (6-DoF IMU back-end)");
     v("bias_mode", bias_mode, "gyroscope bias: fixed (gyro_bias_rad_s), static_init or online");
     v("gyro_bias_rad_s", gyro_bias_rad_s, "gyroscope bias in the IMU frame [rad/s]");
     v("static_init_s", static_init_s, "static_init: length of the initial still interval [s]");
@@ -40,6 +56,14 @@ struct ImuConfig {
     v("online_max_rate_rad_s", online_max_rate_rad_s,
       "online: a re-estimate further than this is refused [rad/s]");
     v("online_gain", online_gain, "online: weight of a new estimate");
+    v("window_s", window_s, "full: span of tracked poses the back-end estimates over [s]");
+    v("frame_interval_s", frame_interval_s, "full: one back-end frame per this much time [s]");
+    v("gyro_noise_density", gyro_noise_density,
+      "full: gyroscope white noise [rad/s/sqrt(Hz)] (Kalibr's gyroscope_noise_density)");
+    v("accel_noise_density", accel_noise_density,
+      "full: accelerometer white noise [m/s^2/sqrt(Hz)] (Kalibr's accelerometer_noise_density)");
+    v("max_bridge_s", max_bridge_s,
+      "full: longest stretch without events carried on the IMU alone (standstills excepted) [s]");
   }
   Status Validate() const;
 };
@@ -47,6 +71,12 @@ struct ImuConfig {
 }  // namespace aavio::imu
 
 namespace aavio {
+template <>
+struct EnumNames<imu::ImuMode> {
+  static constexpr std::array kNames = {std::pair{imu::ImuMode::kOff, "off"},
+                                        std::pair{imu::ImuMode::kGyro, "gyro"},
+                                        std::pair{imu::ImuMode::kFull, "full"}};
+};
 template <>
 struct EnumNames<imu::GyroBiasMode> {
   static constexpr std::array kNames = {std::pair{imu::GyroBiasMode::kFixed, "fixed"},

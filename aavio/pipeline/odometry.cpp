@@ -24,7 +24,7 @@ Odometry::Odometry(const geometry::StereoRig& rig, const OdometryConfig& config,
                 static_cast<std::uint64_t>(config.pipeline.random_seed)},
                start_ns),
       tracker_(CameraOf(rig), config.tracking, config.imu,
-               rig.T_imu_rect_left().value_or(geometry::RigidTransform()).R,
+               rig.T_imu_rect_left().value_or(geometry::RigidTransform()),
                static_cast<std::uint64_t>(config.pipeline.random_seed)),
       mapper_(stereo_, rectification_.left.valid_mask, config.mapping),
       tick_ns_(SecondsToNs(1.0 / config.time_surface.rate_hz)),
@@ -188,6 +188,8 @@ Status Odometry::Tick(TimeNs t_ns, int skipped_ticks) {
         });
       }
     }
+  } else if (tracked.status == tracking::TrackingStatus::kImuOnly) {
+    // Carried on the IMU through a stretch without events: the map is kept for when they return.
   } else if (++lost_ticks_ >= config_.pipeline.max_lost_ticks) {
     // Lost for too long (ticks without events too: the camera may have moved meanwhile, and the
     // gyroscope alone does not say how far): forget the map; the next ticks bootstrap at the

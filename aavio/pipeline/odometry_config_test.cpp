@@ -17,7 +17,7 @@ TEST(OdometryConfig, DefaultsAreValidAndThePapers) {
   EXPECT_DOUBLE_EQ(config.adaptive_accumulation.contrast_threshold, 0.5);  // β
   EXPECT_DOUBLE_EQ(config.mapping.eta, 0.2);                               // η
   EXPECT_EQ(config.adaptive_accumulation.grid_cols, 8);                    // w = 80 px at 640
-  EXPECT_TRUE(config.imu.use_gyro_prior);
+  EXPECT_EQ(config.imu.mode, imu::ImuMode::kGyro);
 }
 
 TEST(OdometryConfig, EveryKeyIsReachableAndUnique) {

@@ -158,6 +158,13 @@ Status RunRecorder::AddTick(const pipeline::OdometryTick& t) {
   status_counts_[tracking::TrackingStatusName(t.status)]++;
   if (t.status == tracking::TrackingStatus::kLost)
     lost_reasons_[tracking::LostReasonName(t.lost_reason)]++;
+  if (t.status == tracking::TrackingStatus::kImuOnly) {
+    // Stretches carried on the IMU alone, [first tick, last tick] in data seconds.
+    const double at = NsToSeconds(t.t_ns - options_.begin_ns);
+    if (imu_only_.empty() || !previous_imu_only_) imu_only_.push_back({at, at});
+    imu_only_.back()[1] = at;
+  }
+  previous_imu_only_ = t.status == tracking::TrackingStatus::kImuOnly;
   if (t.status != tracking::TrackingStatus::kNoMap) {
     timings_.Add("tracking", t.tracking_ms, t.registration_iterations);
     timings_.Add("prediction", t.prediction_ms);
@@ -280,6 +287,9 @@ Expected<RunRecord> RunRecorder::Finish(bool interrupted, TimeNs end_ns,
   s["lost_reasons"] = lost_reasons_;
   event_gaps_.Finish(std::max(end_ns, options_.begin_ns));
   s["event_gaps"] = event_gaps_.Json();
+  s["imu_only"] = nlohmann::json::array();
+  for (const auto& [from, to] : imu_only_)
+    s["imu_only"].push_back({from, to});
   s["bootstraps"] = bootstraps_;
   s["reinitialisations"] = reinitialisations_;
   // Ticks on which a (re-)initialisation found too few points, and the last one's reason.

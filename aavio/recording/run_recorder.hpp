@@ -7,6 +7,7 @@
 /// depth against the sequence's ground truth as the maps are made (no file is read back); and at
 /// Finish writes stamped_traj_estimate.txt, map.ply, config.yaml and summary.json.
 
+#include <array>
 #include <chrono>
 #include <fstream>
 #include <map>
@@ -132,6 +133,8 @@ class RunRecorder {
   pipeline::StageTimings timings_;
   MappingCounts mapping_counts_;
   EventGaps event_gaps_;
+  std::vector<std::array<double, 2>> imu_only_;  ///< stretches carried on the IMU alone [s]
+  bool previous_imu_only_ = false;
   std::map<std::string, int> status_counts_, lost_reasons_;
   std::int64_t events_ = 0, ticks_ = 0;
   std::int64_t events_since_tick_ = 0;  ///< timings.csv's `events`

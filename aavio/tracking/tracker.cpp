@@ -30,6 +30,8 @@ const char* TrackingStatusName(TrackingStatus status) {
       return "lost";
     case TrackingStatus::kNoMap:
       return "no_map";
+    case TrackingStatus::kImuOnly:
+      return "imu";
   }
   return "?";
 }
@@ -73,13 +75,25 @@ geometry::RigidTransform PredictPose(
 }
 
 Tracker::Tracker(const Camera& camera, const TrackingConfig& config,
-                 const imu::ImuConfig& imu_config, const Eigen::Matrix3d& R_imu_cam,
+                 const imu::ImuConfig& imu_config, const geometry::RigidTransform& T_imu_cam,
                  std::uint64_t seed)
     : camera_(camera),
       config_(config),
       imu_config_(imu_config),
-      R_imu_cam_(R_imu_cam),
-      seed_(seed) {}
+      R_imu_cam_(T_imu_cam.R),
+      seed_(seed) {
+  if (imu_config.mode == imu::ImuMode::kFull) back_end_.emplace(imu_config, T_imu_cam);
+}
+
+Eigen::Vector3d Tracker::gyro_bias() const {
+  if (back_end_ && back_end_->ready()) return back_end_->state().gyro_bias;
+  return bias_ ? bias_->bias() : Eigen::Vector3d::Zero();
+}
+
+std::optional<imu::ImuState> Tracker::imu_state() const {
+  if (back_end_ && back_end_->ready()) return back_end_->state();
+  return std::nullopt;
+}
 
 bool Tracker::Starved(std::int64_t new_events) const {
   // Relative to what this sensor and scene gave lately (8 tracked ticks at least), so that no
@@ -98,7 +112,12 @@ void Tracker::Reset(TimeNs t_ns, const geometry::RigidTransform& T_world_cam, bo
   T_prevprev_.reset();
   if (!keep_velocity) velocity_.setZero();
   prev_tracked_ = false;
+  last_tracked_ns_ = t_ns;
   if (!bias_) bias_.emplace(imu_config_, t_ns);
+  if (back_end_) {
+    back_end_->Restart();
+    back_end_->AddPose(t_ns, T_world_cam, /*tracked=*/false);
+  }
 }
 
 TrackingResult Tracker::Track(const events::Observation& obs, const cv::Mat& valid_mask,
@@ -108,12 +127,13 @@ TrackingResult Tracker::Track(const events::Observation& obs, const cv::Mat& val
   auto start = Clock::now();
   if (!bias_) bias_.emplace(imu_config_, t_prev_);
   bias_->AddSamples(imu);
+  if (back_end_) back_end_->AddSamples(imu);
   std::optional<Eigen::Matrix3d> delta_R_imu, delta_R_cam;
   if (!imu.empty()) {
-    Expected<Eigen::Matrix3d> delta = imu::IntegrateGyro(imu, t_prev_, obs.t_ns, bias_->bias());
+    Expected<Eigen::Matrix3d> delta = imu::IntegrateGyro(imu, t_prev_, obs.t_ns, gyro_bias());
     if (delta) delta_R_imu = *delta;
   }
-  if (imu_config_.use_gyro_prior && delta_R_imu)
+  if (imu_config_.mode != imu::ImuMode::kOff && delta_R_imu)
     delta_R_cam = imu::ImuToCameraRotation(*delta_R_imu, R_imu_cam_);
   // The velocity is a translation per tick: over a longer interval (ticks skipped by a live
   // input that fell behind) it is scaled to this one.
@@ -122,8 +142,17 @@ TrackingResult Tracker::Track(const events::Observation& obs, const cv::Mat& val
     velocity_ *= static_cast<double>(dt_ns) / static_cast<double>(velocity_dt_ns_);
   }
   velocity_dt_ns_ = dt_ns;
-  const geometry::RigidTransform predicted =
-      PredictPose(T_prev_, T_prevprev_, delta_R_cam, velocity_);
+  geometry::RigidTransform predicted = PredictPose(T_prev_, T_prevprev_, delta_R_cam, velocity_);
+  // Full mode: the back-end's 6-DoF prediction; at rest (a standstill the IMU sees), the pose
+  // holds.
+  const bool at_rest = back_end_ && back_end_->ready() && back_end_->AtRest(t_prev_, obs.t_ns);
+  if (back_end_ && back_end_->ready()) {
+    if (at_rest) {
+      predicted = T_prev_;
+    } else if (Expected<geometry::RigidTransform> imu_pose = back_end_->Predict(obs.t_ns)) {
+      predicted = *imu_pose;
+    }
+  }
   result.prediction_ms = MsSince(start);
   result.T_world_cur = predicted;
   result.T_world_predicted = predicted;
@@ -131,9 +160,13 @@ TrackingResult Tracker::Track(const events::Observation& obs, const cv::Mat& val
   const bool has_map =
       map_ && static_cast<int>(map_->points_world.size()) >= config_.min_map_points;
   if (has_map && Starved(obs.new_events_left)) {
-    // Nothing new to register on: the time surface only fades. Hold the prediction.
-    result.status = TrackingStatus::kLost;
-    result.lost_reason = LostReason::kNoEvents;
+    // Nothing new to register on: the time surface only fades. Hold the prediction: carried on
+    // the IMU (full mode, for max_bridge_s or a standstill), else lost.
+    const bool bridged =
+        back_end_ && back_end_->ready() &&
+        (at_rest || NsToSeconds(obs.t_ns - last_tracked_ns_) <= imu_config_.max_bridge_s);
+    result.status = bridged ? TrackingStatus::kImuOnly : TrackingStatus::kLost;
+    result.lost_reason = bridged ? LostReason::kNone : LostReason::kNoEvents;
   } else if (has_map) {
     start = Clock::now();
     // The map in its reference frame; the increment acts on T_ref,cur.
@@ -187,9 +220,15 @@ TrackingResult Tracker::Track(const events::Observation& obs, const cv::Mat& val
     }
     recent_next_ = (recent_next_ + 1) % kRecentTicks;
   }
+  if (back_end_) {
+    back_end_->AddPose(obs.t_ns, result.T_world_cur, result.status == TrackingStatus::kOk);
+  }
+  if (result.status == TrackingStatus::kOk) last_tracked_ns_ = obs.t_ns;
   if (result.status == TrackingStatus::kOk) {
     const double gain = config_.velocity_gain;
     velocity_ = gain * (result.T_world_cur.t - T_prev_.t) + (1.0 - gain) * velocity_;
+  } else if (result.status == TrackingStatus::kImuOnly) {
+    velocity_ = result.T_world_cur.t - T_prev_.t;  // the IMU's, should the back-end stop
   } else if (result.status == TrackingStatus::kLost) {
     velocity_ *= config_.lost_velocity_decay;
   } else {

@@ -1,7 +1,9 @@
 #pragma once
 /// Tracking at every tick (algorithm.md §5): predict the pose — rotation from the gyroscope
 /// pre-integrated over the tick (or constant angular velocity without IMU), translation by
-/// constant velocity — then register the local map on the negative time surface from it.
+/// constant velocity; with imu.mode full, the whole pose from the IMU back-end once it has an
+/// estimate — then register the local map on the negative time surface from it. A tick without
+/// events to register on is carried on the IMU alone in full mode (kImuOnly), else lost.
 /// Divergence (too few valid residuals, a cost that grew, a rotation that disagrees with the
 /// gyroscope) holds the prediction and reports kLost, so that mapping can re-initialise at the
 /// last good pose.
@@ -13,13 +15,19 @@
 #include "aavio/events/observation.hpp"
 #include "aavio/geometry/rigid_transform.hpp"
 #include "aavio/imu/gyro_bias_estimator.hpp"
+#include "aavio/imu/imu_back_end.hpp"
 #include "aavio/imu/imu_config.hpp"
 #include "aavio/imu/imu_sample.hpp"
 #include "aavio/tracking/registration.hpp"
 
 namespace aavio::tracking {
 
-enum class TrackingStatus { kOk, kNoMap, kLost };
+enum class TrackingStatus {
+  kOk,
+  kNoMap,
+  kLost,
+  kImuOnly,  ///< no events to register on: the pose carried by the IMU back-end (imu.mode full)
+};
 
 /// Why a tick was declared lost (the first test that failed, in this order).
 enum class LostReason {
@@ -33,7 +41,7 @@ enum class LostReason {
               ///< standstill): not registered; the pose holds, turned by the gyroscope
 };
 const char* LostReasonName(LostReason reason);
-/// "ok", "lost" or "no_map" (summary.json, timings.csv, the Python module).
+/// "ok", "lost", "no_map" or "imu" (summary.json, timings.csv, the Python module).
 const char* TrackingStatusName(TrackingStatus status);
 
 /// What tracking registers against: map points in the world, and its reference pose.
@@ -63,15 +71,18 @@ geometry::RigidTransform PredictPose(
 
 class Tracker {
  public:
-  /// `R_imu_cam`: the rectified left camera → IMU rotation (see gyro_preintegration.hpp).
+  /// `T_imu_cam`: the rectified left camera → IMU (see gyro_preintegration.hpp).
   Tracker(const Camera& camera, const TrackingConfig& config, const imu::ImuConfig& imu_config,
-          const Eigen::Matrix3d& R_imu_cam, std::uint64_t seed);
+          const geometry::RigidTransform& T_imu_cam, std::uint64_t seed);
 
   /// Starts (or restarts, keeping the gyroscope bias estimate) at a known pose.
   void Reset(TimeNs t_ns, const geometry::RigidTransform& T_world_cam, bool keep_velocity = false);
   void SetMap(std::shared_ptr<const TrackingMap> map) { map_ = std::move(map); }
-  /// The bias in use (configured, static-init or online estimate); valid after Reset.
-  Eigen::Vector3d gyro_bias() const { return bias_ ? bias_->bias() : Eigen::Vector3d::Zero(); }
+  /// The gyroscope bias in use (configured, static-init, online or the back-end's estimate);
+  /// valid after Reset.
+  Eigen::Vector3d gyro_bias() const;
+  /// The back-end's estimate (imu.mode full, once it has one).
+  std::optional<imu::ImuState> imu_state() const;
 
   /// One tick: `imu` must cover [previous tick, this tick] when the gyroscope prior is on.
   TrackingResult Track(const events::Observation& obs, const cv::Mat& valid_mask,
@@ -83,6 +94,8 @@ class Tracker {
   imu::ImuConfig imu_config_;
   Eigen::Matrix3d R_imu_cam_;
   std::optional<imu::GyroBiasEstimator> bias_;
+  std::optional<imu::ImuBackEnd> back_end_;  ///< imu.mode full
+  TimeNs last_tracked_ns_ = 0;               ///< the last registered tick (IMU-only bridging)
   std::uint64_t seed_;
   std::shared_ptr<const TrackingMap> map_;
   TimeNs t_prev_ = 0;

@@ -60,7 +60,8 @@ struct TrackRun {
   Eigen::Vector3d final_bias;
 };
 
-TrackRun TrackSequence(bool gyro_prior, imu::GyroBiasMode bias_mode, const Eigen::Vector3d& true_bias) {
+TrackRun TrackSequence(bool gyro_prior, imu::GyroBiasMode bias_mode,
+                       const Eigen::Vector3d& true_bias) {
   const std::vector<Eigen::Vector3d> map_points = EdgeMap(11);
   const Eigen::Matrix3d R_imu_cam = geometry::ExpSO3(Eigen::Vector3d(0.3, -1.2, 2.0));
   auto pose_at = [](double t) {
@@ -78,10 +79,11 @@ TrackRun TrackSequence(bool gyro_prior, imu::GyroBiasMode bias_mode, const Eigen
   TrackingConfig config;
   config.max_iterations = 20;
   imu::ImuConfig imu_config;
-  imu_config.use_gyro_prior = gyro_prior;
+  imu_config.mode = gyro_prior ? imu::ImuMode::kGyro : imu::ImuMode::kOff;
   imu_config.bias_mode = bias_mode;
   imu_config.online_window = 10;
-  Tracker tracker(kCamera, config, imu_config, R_imu_cam, 7);
+  Tracker tracker(kCamera, config, imu_config,
+                  geometry::RigidTransform{R_imu_cam, Eigen::Vector3d::Zero()}, 7);
   const TimeNs tick = 10 * kNsPerMs, start = 100 * kNsPerMs;
   tracker.Reset(start, pose_at(0.1));
   auto map = std::make_shared<TrackingMap>();
@@ -99,7 +101,8 @@ TrackRun TrackSequence(bool gyro_prior, imu::GyroBiasMode bias_mode, const Eigen
     const TrackingResult r = tracker.Track(obs, images.valid, imu_samples);
     run.ok += r.status == TrackingStatus::kOk;
     const Eigen::Matrix3d truth = pose_at(NsToSeconds(t)).R;
-    run.max_rotation_error_deg = std::max(run.max_rotation_error_deg, RotationDeg(r.T_world_cur.R, truth));
+    run.max_rotation_error_deg =
+        std::max(run.max_rotation_error_deg, RotationDeg(r.T_world_cur.R, truth));
     run.sum_prediction_error_deg += RotationDeg(r.T_world_predicted.R, truth);
     run.max_prediction_error_deg =
         std::max(run.max_prediction_error_deg, RotationDeg(r.T_world_predicted.R, truth));
@@ -130,7 +133,7 @@ TEST(Tracker, OnlineBiasEstimateConverges) {
 
 TEST(Tracker, DivergenceHoldsThePredictionAndReportsLost) {
   const std::vector<Eigen::Vector3d> map_points = EdgeMap(5);
-  Tracker tracker(kCamera, TrackingConfig{}, imu::ImuConfig{}, Eigen::Matrix3d::Identity(), 1);
+  Tracker tracker(kCamera, TrackingConfig{}, imu::ImuConfig{}, geometry::RigidTransform{}, 1);
   tracker.Reset(0, geometry::RigidTransform());
   auto map = std::make_shared<TrackingMap>();
   map->points_world = map_points;
@@ -144,14 +147,14 @@ TEST(Tracker, DivergenceHoldsThePredictionAndReportsLost) {
   obs.negative_ts_left = images.negative;
   obs.grad_u = images.du;
   obs.grad_v = images.dv;
-  const std::vector<imu::ImuSample> still = {{0, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()},
-                                             {20 * kNsPerMs, Eigen::Vector3d::Zero(),
-                                              Eigen::Vector3d::Zero()}};
+  const std::vector<imu::ImuSample> still = {
+      {0, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()},
+      {20 * kNsPerMs, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()}};
   const TrackingResult r = tracker.Track(obs, images.valid, still);
   EXPECT_EQ(r.status, TrackingStatus::kLost);
   EXPECT_LT(RotationDeg(r.T_world_cur.R, Eigen::Matrix3d::Identity()), 1e-9);
   // Without a map: the prediction, reported as such.
-  Tracker unmapped(kCamera, TrackingConfig{}, imu::ImuConfig{}, Eigen::Matrix3d::Identity(), 1);
+  Tracker unmapped(kCamera, TrackingConfig{}, imu::ImuConfig{}, geometry::RigidTransform{}, 1);
   unmapped.Reset(0, geometry::RigidTransform());
   EXPECT_EQ(unmapped.Track(obs, images.valid, still).status, TrackingStatus::kNoMap);
 }
@@ -168,8 +171,8 @@ TEST(Tracker, LostTicksCoastOnTheVelocity) {
   map->points_world = map_points;
   auto start = [&](double lost_velocity_decay) {
     config.lost_velocity_decay = lost_velocity_decay;
-    auto t = std::make_unique<Tracker>(kCamera, config, imu::ImuConfig{},
-                                       Eigen::Matrix3d::Identity(), 1);
+    auto t =
+        std::make_unique<Tracker>(kCamera, config, imu::ImuConfig{}, geometry::RigidTransform{}, 1);
     t->Reset(0, geometry::RigidTransform());
     t->SetMap(map);
     return t;
@@ -227,6 +230,69 @@ TEST(Tracker, LostTicksCoastOnTheVelocity) {
   const auto [x_held, x_held_again] = lose_twice(holding);
   EXPECT_NEAR(x_held, 2.0 * step, 1e-9);
   EXPECT_NEAR(x_held_again, 2.0 * step, 1e-9);
+}
+
+// imu.mode full: 1.5 s tracked, then 0.4 s without events carried on the IMU alone, then events
+// again. The camera sways and moves forward; a perfect IMU on the camera, gravity along +y.
+TEST(Tracker, FullImuCarriesTheStretchWithoutEventsAndTrackingResumes) {
+  const std::vector<Eigen::Vector3d> map_points = EdgeMap(11);
+  const Eigen::Vector3d gravity(0, 9.81, 0);
+  auto pose_at = [](double t) {
+    return geometry::RigidTransform(geometry::ExpSO3(Eigen::Vector3d(0, 0.3 * std::sin(t), 0)),
+                                    {0.2 * std::sin(2 * t), 0.05 * std::sin(3 * t), 0.15 * t});
+  };
+  std::vector<imu::ImuSample> imu_samples;
+  for (TimeNs t = 0; t <= 2200 * kNsPerMs; t += kNsPerMs) {
+    const double s = NsToSeconds(t);
+    const Eigen::Vector3d accel_world(-0.8 * std::sin(2 * s), -0.45 * std::sin(3 * s), 0.0);
+    imu_samples.push_back({t, Eigen::Vector3d(0, 0.3 * std::cos(s), 0),
+                           pose_at(s).R.transpose() * (accel_world - gravity)});
+  }
+  TrackingConfig config;
+  config.max_iterations = 20;
+  imu::ImuConfig imu_config;
+  imu_config.mode = imu::ImuMode::kFull;
+  Tracker tracker(kCamera, config, imu_config, geometry::RigidTransform{}, 7);
+  const TimeNs tick = 10 * kNsPerMs, start = 100 * kNsPerMs;
+  const TimeNs dark_from = 1600 * kNsPerMs, dark_to = 2000 * kNsPerMs;
+  tracker.Reset(start, pose_at(0.1));
+  auto map = std::make_shared<TrackingMap>();
+  map->points_world = map_points;
+  tracker.SetMap(map);
+  int ok_before = 0, imu_only = 0, ok_after = 0;
+  double bridge_error_m = 0.0;
+  for (TimeNs t = start + tick; t <= 2100 * kNsPerMs; t += tick) {
+    const bool dark = t > dark_from && t <= dark_to;
+    const geometry::RigidTransform truth = pose_at(NsToSeconds(t));
+    const testing::Images images = Render(map_points, truth);
+    events::Observation obs;
+    obs.t_ns = t;
+    obs.negative_ts_left = images.negative;
+    obs.grad_u = images.du;
+    obs.grad_v = images.dv;
+    obs.new_events_left = dark ? 0 : 5000;
+    std::vector<imu::ImuSample> window;
+    for (const imu::ImuSample& s : imu_samples)
+      if (s.t_ns >= t - tick - kNsPerMs && s.t_ns <= t + kNsPerMs) window.push_back(s);
+    const TrackingResult r = tracker.Track(obs, images.valid, window);
+    if (dark) {
+      EXPECT_EQ(r.status, TrackingStatus::kImuOnly) << NsToSeconds(t);
+      imu_only += r.status == TrackingStatus::kImuOnly;
+      if (t == dark_to) bridge_error_m = (r.T_world_cur.t - truth.t).norm();
+    } else {
+      (t <= dark_from ? ok_before : ok_after) += r.status == TrackingStatus::kOk;
+    }
+  }
+  ASSERT_TRUE(tracker.imu_state().has_value());
+  EXPECT_EQ(ok_before, 150);
+  EXPECT_EQ(imu_only, 40);
+  EXPECT_EQ(ok_after, 10);  // resumed at once, on the same map
+  // Holding the pose would be off by the 8 cm travelled in the dark.
+  const double travelled = (pose_at(2.0).t - pose_at(1.6).t).norm();
+  EXPECT_GT(travelled, 0.07);
+  EXPECT_LT(bridge_error_m, 0.1 * travelled) << bridge_error_m << " m after " << travelled;
+  // The gravity it found, in the camera's world.
+  EXPECT_LT((tracker.imu_state()->gravity_world - gravity).norm(), 0.1);
 }
 
 }  // namespace

@@ -479,7 +479,7 @@ TEST(Cli, RunOdometryWritesItsOutputsAndIsDeterministic) {
   ASSERT_EQ(r.code, kExitOk) << r.err;
   const std::string config = ReadAll(std::filesystem::path(two) / "config.yaml");
   EXPECT_NE(config.find("mode: newest_events"), std::string::npos);
-  EXPECT_NE(config.find("use_gyro_prior: false"), std::string::npos);
+  EXPECT_NE(config.find("\n  mode: off\n"), std::string::npos);
 
   // `aavio eval --run` recomputes what the run reported, and scores its depth maps.
   r = RunAavio({"eval", "--run", one, "--json"});

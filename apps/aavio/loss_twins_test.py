@@ -2,7 +2,8 @@
 """Tracking loss on purpose: three 3 s twins of the mini preset (seed 2, typical sensor), each
 with a stretch from 1.2 s to 1.7 s where something goes wrong (aavio simulate --dark,
 --right-off, --fast). The run must report it, recover after it, and keep the trajectory
-continuous (no pose jumps beyond the true motion); after recovery it tracks as before.
+continuous (no pose jumps beyond the true motion); after recovery it tracks as before. The dark
+twin again with imu.mode full: carried on the IMU alone, without re-initialising.
 
     loss_twins_test.py AAVIO_BINARY SCRATCH_DIR
 """
@@ -18,13 +19,15 @@ AAVIO, SCRATCH = sys.argv[1], sys.argv[2]
 START, END = 1.2, 1.7
 
 
-def twin(name, options):
-    seq, run = os.path.join(SCRATCH, name, 'seq'), os.path.join(SCRATCH, name, 'run')
-    subprocess.run([AAVIO, 'simulate', '--preset', 'mini', '--duration', '3', '--seed', '2',
-                    '--out', seq, '--quiet', '--overwrite'] + options, check=True,
-                   stdout=subprocess.DEVNULL)
-    printed = subprocess.run([AAVIO, 'run', seq, '--out', run, '--quiet', '--overwrite'],
-                             check=True, capture_output=True, text=True).stdout
+def twin(name, options, run_options=(), seq=None):
+    run = os.path.join(SCRATCH, name, 'run')
+    if seq is None:
+        seq = os.path.join(SCRATCH, name, 'seq')
+        subprocess.run([AAVIO, 'simulate', '--preset', 'mini', '--duration', '3', '--seed', '2',
+                        '--out', seq, '--quiet', '--overwrite'] + options, check=True,
+                       stdout=subprocess.DEVNULL)
+    printed = subprocess.run([AAVIO, 'run', seq, '--out', run, '--quiet', '--overwrite'] +
+                             list(run_options), check=True, capture_output=True, text=True).stdout
     est = np.loadtxt(os.path.join(run, 'stamped_traj_estimate.txt'))
     gt = np.loadtxt(os.path.join(seq, 'groundtruth.txt'))
     rows = open(os.path.join(run, 'timings.csv')).read().split('\n')[1:]
@@ -45,10 +48,28 @@ def twin(name, options):
         'jump_m': float(np.max(step - true_step)),
         # After recovery, rigidly aligned on its own: the motion is tracked again.
         'after_rmse_m': aligned_rmse(est[after, 1:4], true[after]),
+        # The motion over the stretch, in the camera's frame at its start, against the truth's.
+        'stretch_error_m': stretch_error(est, gt),
+        'stretch_m': float(np.sum(true_step[(t[1:] > START) & (t[1:] <= END)])),
     }
     print(name, {k: v for k, v in r.items() if k not in ('printed', 'summary')},
           summary['lost_reasons'], summary['event_gaps'])
     return r
+
+
+def rotation(q):
+    x, y, z, w = q
+    return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+                     [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+                     [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
+
+
+def stretch_error(est, gt):
+    def motion(poses):
+        t = poses[:, 0] - est[0, 0] + 0.01
+        a, b = np.argmin(np.abs(t - START)), np.argmin(np.abs(t - END))
+        return rotation(poses[a, 4:8]).T @ (poses[b, 1:4] - poses[a, 1:4])
+    return float(np.linalg.norm(motion(est) - motion(gt)))
 
 
 def aligned_rmse(p, q):
@@ -82,6 +103,19 @@ check('no events from the left camera: 1.20-1.70 s' in dark['printed'], 'dark: t
 check(dark['ok_after'] >= 0.9, 'dark: tracking recovers')
 check(dark['jump_m'] < 0.03, 'dark: the trajectory stays continuous')
 check(dark['after_rmse_m'] < 0.05, 'dark: the motion after recovery is tracked')
+
+full = twin('dark_full', [], ['--set', 'imu.mode=full'], os.path.join(SCRATCH, 'dark', 'seq'))
+s = full['summary']
+check(s['status'].get('imu', 0) >= 40 and s['reinitialisations'] == 0,
+      'dark, imu.mode full: the stretch is carried on the IMU, no re-initialisation')
+check(len(s['imu_only']) == 1 and abs(s['imu_only'][0][0] - START) < 0.05 and
+      abs(s['imu_only'][0][1] - END) < 0.02, 'dark, imu.mode full: summary.json lists the stretch')
+check('carried on the IMU alone (no events): 1.2' in full['printed'],
+      'dark, imu.mode full: the run says so')
+check(full['ok_after'] >= 0.9, 'dark, imu.mode full: tracking resumes')
+check(full['jump_m'] < 0.03, 'dark, imu.mode full: the trajectory stays continuous')
+check(full['stretch_error_m'] < 0.5 * dark['stretch_error_m'],
+      'dark, imu.mode full: the IMU follows the motion the held pose misses')
 
 right_off = twin('right_off', ['--right-off', '%g:%g' % (START, END - START)])
 s = right_off['summary']

@@ -104,15 +104,23 @@ void PrintOdometryRun(const recording::RunRecord& r, Context& ctx) {
   ctx.out << StrFormat("%s%.2f s of data (%lld events) in %.1f s: real-time factor %.2f\n",
                        s["interrupted"].get<bool>() ? "interrupted: " : "", r.data_s,
                        s["events"].get<long long>(), r.wall_s, s["real_time_factor"].get<double>());
+  const std::string imu = count("imu") > 0 ? StrFormat(", IMU alone %d", count("imu")) : "";
   ctx.out << StrFormat(
-      "poses %zu: tracking ok %d, lost %d, no map %d; %d bootstrap(s), %d re-initialisation(s)\n",
-      s["poses"].get<std::size_t>(), count("ok"), count("lost"), count("no_map"),
+      "poses %zu: tracking ok %d, lost %d, no map %d%s; %d bootstrap(s), %d "
+      "re-initialisation(s)\n",
+      s["poses"].get<std::size_t>(), count("ok"), count("lost"), count("no_map"), imu.c_str(),
       s["bootstraps"].get<int>(), s["reinitialisations"].get<int>());
   for (const char* camera : {"left", "right"}) {
     if (s["event_gaps"][camera].empty()) continue;
     std::string line = StrFormat("no events from the %s camera:", camera);
     for (const nlohmann::json& gap : s["event_gaps"][camera])
       line += StrFormat(" %.2f-%.2f s", gap[0].get<double>(), gap[1].get<double>());
+    ctx.out << line << "\n";
+  }
+  if (!s["imu_only"].empty()) {
+    std::string line = "carried on the IMU alone (no events):";
+    for (const nlohmann::json& stretch : s["imu_only"])
+      line += StrFormat(" %.2f-%.2f s", stretch[0].get<double>(), stretch[1].get<double>());
     ctx.out << line << "\n";
   }
   if (const int failed = s["bootstrap_failures"]["ticks"].get<int>(); failed > 0) {
@@ -142,7 +150,7 @@ void PrintOdometryRun(const recording::RunRecord& r, Context& ctx) {
 
 // The end-of-run lines: what ran, how fast, how accurate, where the outputs are.
 void PrintRun(const recording::RunRecord& record, const RunOptions& options,
-              const std::optional<RelativeError100Ms>& tracking_error, bool gyro_prior,
+              const std::optional<RelativeError100Ms>& tracking_error, const std::string& imu_mode,
               Context& ctx) {
   const nlohmann::json& s = record.summary;
   if (options.gt_poses) {
@@ -157,10 +165,9 @@ void PrintRun(const recording::RunRecord& record, const RunOptions& options,
   }
   if (tracking_error) {
     ctx.out << StrFormat(
-        "tracked against ground-truth maps (gyroscope prior %s): RPE over 100 ms: rotation "
+        "tracked against ground-truth maps (imu.mode %s): RPE over 100 ms: rotation "
         "%.4f deg, translation %.4f m (RMSE)\n",
-        gyro_prior ? "on" : "off", tracking_error->rotation_deg_rmse,
-        tracking_error->translation_m_rmse);
+        imu_mode.c_str(), tracking_error->rotation_deg_rmse, tracking_error->translation_m_rmse);
   }
   if (record.depth) ctx.out << recording::DepthTable(*record.depth);
   if (record.sample_ceiling) ctx.out << recording::SampleCeilingLine(*record.sample_ceiling);
@@ -345,14 +352,14 @@ Expected<bool> Run(RunOptions options, Context& ctx) {
   std::optional<RelativeError100Ms> tracking_error;
   if (options.gt_map) {
     tracking_error = RelativeErrorOver100Ms(recorder.trajectory(), gt_poses);
-    extra["gyro_prior"] = config->imu.use_gyro_prior;
+    extra["imu_mode"] = EnumName(config->imu.mode);
     extra["rpe_100ms"] = {{"rotation_deg_rmse", tracking_error->rotation_deg_rmse},
                           {"translation_m_rmse", tracking_error->translation_m_rmse},
                           {"pairs", tracking_error->pairs}};
   }
   Expected<recording::RunRecord> record = recorder.Finish(fed->interrupted, fed->last_t, extra);
   if (!record) return record.status();
-  PrintRun(*record, options, tracking_error, config->imu.use_gyro_prior, ctx);
+  PrintRun(*record, options, tracking_error, EnumName(config->imu.mode), ctx);
   return fed->interrupted;
 }
 
