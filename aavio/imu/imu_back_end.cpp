@@ -33,7 +33,17 @@ constexpr double kRestSpeed = 0.1, kRestGyroRadS = 0.03, kRestAccelStd = 0.15;
 constexpr int kMinFrames = 8;
 constexpr double kLongTermS = 20.0;  // the biases' and gravity's memory [s]
 constexpr double kGravity = 9.81;    // m/s²
-constexpr int kIterations = 5;
+constexpr int kIterations = 3;       // from the previous frame's solution
+
+// The weight of a pair's residuals: the inverse of the pre-integration's covariance plus the two
+// poses'.
+Eigen::Matrix<double, 9, 9> Information(const Preintegrated& p) {
+  Eigen::Matrix<double, 9, 9> cov = p.covariance;
+  cov.block<3, 3>(0, 0) += 2 * kRotationSigmaRad * kRotationSigmaRad * Eigen::Matrix3d::Identity();
+  cov.block<3, 3>(6, 6) += 2 * kPositionSigmaM * kPositionSigmaM * Eigen::Matrix3d::Identity();
+  cov.block<3, 3>(3, 3) += 1e-8 * Eigen::Matrix3d::Identity();
+  return cov.inverse();
+}
 
 // A basis of the plane orthogonal to the unit vector u.
 Eigen::Matrix<double, 3, 2> TangentBasis(const Eigen::Vector3d& u) {
@@ -92,13 +102,14 @@ void ImuBackEnd::AddPose(TimeNs t_ns, const geometry::RigidTransform& T_world_ca
   }
   if (tracked &&
       (frames_.empty() || t_ns - frames_.back().t_ns >= SecondsToNs(config_.frame_interval_s))) {
-    Frame frame{t_ns, T_world_imu.R, T_world_imu.t, last_v_, {}};
+    Frame frame{t_ns, T_world_imu.R, T_world_imu.t, last_v_, {}, {}};
     bool linked = true;
     if (!frames_.empty()) {
       Expected<Preintegrated> p = Preintegrate(samples_, frames_.back().t_ns, t_ns,
                                                state_.gyro_bias, state_.accel_bias, noise_);
       if (p.ok()) {
         frame.from_previous = *p;
+        frame.information = Information(*p);
         if (!ready_) {  // a first guess: the mean velocity since the previous frame
           frame.v_world = (frame.p_world_imu - frames_.back().p_world_imu) / p->dt_s;
         }
@@ -222,14 +233,18 @@ bool ImuBackEnd::InitialiseGravityAndVelocities() {
 double ImuBackEnd::GaussNewtonStep(bool fix_biases_and_gravity) {
   const int n = static_cast<int>(frames_.size());
   const int bg = 3 * n, ba = 3 * n + 3, dg = 3 * n + 6, unknowns = 3 * n + 8;
-  // Pre-integrations whose biases are far from the estimate are integrated again.
-  for (int j = 1; j < n; ++j) {
+  // Pre-integrations whose biases are far from the long-term ones are integrated again (the
+  // window's own estimate stays near them: first order covers it).
+  for (int j = 1; fix_biases_and_gravity && j < n; ++j) {
     Preintegrated& P = frames_[j].from_previous;
     if ((P.gyro_bias - state_.gyro_bias).norm() > kReintegrateGyro ||
         (P.accel_bias - state_.accel_bias).norm() > kReintegrateAccel) {
       Expected<Preintegrated> again = Preintegrate(samples_, P.t_begin_ns, P.t_end_ns,
                                                    state_.gyro_bias, state_.accel_bias, noise_);
-      if (again.ok()) P = *again;
+      if (again.ok()) {
+        P = *again;
+        frames_[j].information = Information(P);
+      }
     }
   }
   const double G = kGravity;
@@ -269,13 +284,7 @@ double ImuBackEnd::GaussNewtonStep(bool fix_biases_and_gravity) {
     J.block<3, 3>(6, 6) = -P.dp_dbg;
     J.block<3, 3>(6, 9) = -P.dp_dba;
     J.block<3, 2>(6, 12) = -0.5 * Rt * dt * dt * dg_ddelta;
-    // Covariance: the pre-integration's and the two poses'.
-    Eigen::Matrix<double, 9, 9> cov = P.covariance;
-    cov.block<3, 3>(0, 0) +=
-        2 * kRotationSigmaRad * kRotationSigmaRad * Eigen::Matrix3d::Identity();
-    cov.block<3, 3>(6, 6) += 2 * kPositionSigmaM * kPositionSigmaM * Eigen::Matrix3d::Identity();
-    cov.block<3, 3>(3, 3) += 1e-8 * Eigen::Matrix3d::Identity();
-    const Eigen::Matrix<double, 9, 9> W = cov.inverse();
+    const Eigen::Matrix<double, 9, 9>& W = fj.information;
     cost += r.dot(W * r);
 
     const int cols[5] = {3 * i, 3 * j, bg, ba, dg};

@@ -80,6 +80,7 @@ class ImuBackEnd {
     Eigen::Vector3d p_world_imu;
     Eigen::Vector3d v_world;
     Preintegrated from_previous;  ///< the IMU from the previous frame to this one
+    Eigen::Matrix<double, 9, 9> information = Eigen::Matrix<double, 9, 9>::Zero();  ///< its weight
   };
   void Solve();
   bool InitialiseGravityAndVelocities();

@@ -220,8 +220,10 @@ TrackingResult Tracker::Track(const events::Observation& obs, const cv::Mat& val
     }
     recent_next_ = (recent_next_ + 1) % kRecentTicks;
   }
-  if (back_end_) {
+  if (back_end_) {  // the back-end's update counts as prediction (the IMU's share of a tick)
+    const auto update = Clock::now();
     back_end_->AddPose(obs.t_ns, result.T_world_cur, result.status == TrackingStatus::kOk);
+    result.prediction_ms += MsSince(update);
   }
   if (result.status == TrackingStatus::kOk) last_tracked_ns_ = obs.t_ns;
   if (result.status == TrackingStatus::kOk) {
