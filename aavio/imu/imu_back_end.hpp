@@ -13,7 +13,9 @@
 ///   r_v = R_iᵀ (v_j − v_i − g Δt) − Δv(b_g, b_a)
 ///   r_p = R_iᵀ (p_j − p_i − v_i Δt − ½ g Δt²) − Δp(b_g, b_a)
 /// weighted by the pre-integration's covariance plus the tracking's own noise, with weak priors
-/// on the biases at their previous estimates. |g| is fixed; its direction is 2 unknowns.
+/// on the biases at the long-term estimates. |g| is fixed; its direction is 2 unknowns. Each
+/// window's biases and gravity move the long-term ones (a running mean, then over 20 s); the
+/// velocities are then solved again with those, and they are what predictions use.
 ///
 /// All of it runs in data time, synchronously, in the tracking thread: deterministic.
 
