@@ -11,6 +11,10 @@
 #include <sys/types.h>
 #include <sys/wait.h>
 #include <unistd.h>
+
+// Provided by a sanitizer runtime when one is linked in (a fuzzing or sanitizer build); null
+// otherwise.
+extern "C" void __sanitizer_set_death_callback(void (*callback)(void)) __attribute__((weak));
 #endif
 
 namespace aavio::io::h5 {
@@ -115,6 +119,12 @@ Status SurvivesInChild(const std::string& path, const std::function<void()>& att
   const pid_t child = fork();
   if (child < 0) return Status::Ok();  // no probe, as where fork does not exist
   if (child == 0) {
+    // A crash here is the parent's finding, not the child's: drop handlers inherited from a
+    // harness (a fuzzer writing a crash report, a sanitizer's death callback) so that the child
+    // just dies of the signal.
+    for (const int signal : {SIGSEGV, SIGBUS, SIGABRT, SIGFPE, SIGILL})
+      std::signal(signal, SIG_DFL);
+    if (__sanitizer_set_death_callback) __sanitizer_set_death_callback(nullptr);
     attempt();
     _exit(0);  // the child only: no atexit handlers, no flush of the caller's buffers
   }
