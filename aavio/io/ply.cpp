@@ -1,7 +1,9 @@
 #include "aavio/io/ply.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -22,20 +24,40 @@ std::string Quoted(const std::string& line) {
   return out + (line.size() > 40 ? "...\"" : "\"");
 }
 
-void WriteHeader(std::ostream& out, const std::string& comment, std::size_t vertices) {
-  out << "ply\nformat binary_little_endian 1.0\n";
+constexpr std::size_t kVertexBytes = 3 * sizeof(float) + 3;
+// "element vertex N" and a comment padding it to a fixed width, so that a streamed file's count
+// can be written over in place.
+constexpr std::size_t kCountWidth = 20;
+
+std::string CountLines(std::size_t vertices, bool padded) {
+  std::string lines = "element vertex " + std::to_string(vertices) + "\n";
+  if (padded) {
+    const std::size_t digits = std::to_string(vertices).size();
+    lines += "comment" + std::string(kCountWidth - std::min(digits, kCountWidth), ' ') + "\n";
+  }
+  return lines;
+}
+
+// Returns the header's offset of the count line.
+std::size_t WriteHeader(std::ostream& out, const std::string& comment, std::size_t vertices,
+                        bool padded = false) {
+  std::string header = "ply\nformat binary_little_endian 1.0\n";
   std::istringstream lines(comment);
   for (std::string line; std::getline(lines, line);)
-    out << "comment " << line << "\n";
-  out << "element vertex " << vertices << "\n";
+    header += "comment " + line + "\n";
+  const std::size_t count_at = header.size();
+  header += CountLines(vertices, padded);
   for (const char* property : kProperties)
-    out << property << "\n";
-  out << "end_header\n";
+    header += std::string(property) + "\n";
+  header += "end_header\n";
+  out << header;
+  return count_at;
 }
 
 void WriteVertices(std::ostream& out, std::span<const Eigen::Vector3f> points,
                    std::span<const Rgb> colours) {
   for (std::size_t i = 0; i < points.size(); ++i) {
+    static_assert(kVertexBytes == 15);
     out.write(reinterpret_cast<const char*>(points[i].data()), 3 * sizeof(float));
     out.write(reinterpret_cast<const char*>(colours[i].data()), 3);
   }
@@ -56,13 +78,20 @@ Status WritePly(const std::string& path, std::span<const Eigen::Vector3f> points
   return out ? Status::Ok() : IoError(path + ": write failed (disk full?)");
 }
 
-PlyWriter::PlyWriter(std::string path, std::string comment, std::ofstream part)
-    : path_(std::move(path)), comment_(std::move(comment)), part_(std::move(part)) {}
+PlyWriter::PlyWriter(std::string path, std::ofstream part, std::size_t count_at,
+                     std::size_t header_bytes)
+    : path_(std::move(path)),
+      part_(std::move(part)),
+      count_at_(count_at),
+      header_bytes_(header_bytes) {}
 
-Expected<PlyWriter> PlyWriter::Open(const std::string& path, std::string comment) {
+Expected<PlyWriter> PlyWriter::Open(const std::string& path, const std::string& comment) {
   std::ofstream part(path + ".part", std::ios::binary | std::ios::trunc);
   if (!part) return IoError(path + ".part: cannot write");
-  return PlyWriter(path, std::move(comment), std::move(part));
+  const std::size_t count_at = WriteHeader(part, comment, 0, /*padded=*/true);
+  const auto header_bytes = static_cast<std::size_t>(part.tellp());
+  if (!part) return IoError(path + ".part: write failed (disk full?)");
+  return PlyWriter(path, std::move(part), count_at, header_bytes);
 }
 
 Status PlyWriter::Append(std::span<const Eigen::Vector3f> points, std::span<const Rgb> colours) {
@@ -79,18 +108,30 @@ Status PlyWriter::Append(std::span<const Eigen::Vector3f> points, std::span<cons
 Status PlyWriter::Close() {
   if (!part_.is_open()) return FailedPrecondition(path_ + ": already closed");
   part_.close();
-  if (!part_) return IoError(path_ + ".part: write failed (disk full?)");
   const std::string part_path = path_ + ".part";
-  std::ifstream vertices(part_path, std::ios::binary);
-  std::ofstream out(path_, std::ios::binary | std::ios::trunc);
-  if (!vertices) return IoError(part_path + ": cannot read back");
-  if (!out) return IoError(path_ + ": cannot write");
-  WriteHeader(out, comment_, size_);
-  if (size_ > 0) out << vertices.rdbuf();
-  if (!out) return IoError(path_ + ": write failed (disk full?)");
-  vertices.close();
-  std::remove(part_path.c_str());
-  return Status::Ok();
+  std::size_t complete = size_;
+  std::string lost;
+  if (!part_) {
+    // A write failed (a full disk): keep the whole vertices that reached the file.
+    std::error_code ec;
+    const std::uintmax_t bytes = std::filesystem::file_size(part_path, ec);
+    if (ec || bytes < header_bytes_) return IoError(part_path + ": write failed (disk full?)");
+    complete = std::min<std::size_t>(size_, (bytes - header_bytes_) / kVertexBytes);
+    std::filesystem::resize_file(part_path, header_bytes_ + complete * kVertexBytes, ec);
+    if (ec) return IoError(part_path + ": cannot truncate (" + ec.message() + ")");
+    lost = StrFormat("%s: write failed (disk full?): %zu of %zu points written", path_.c_str(),
+                     complete, size_);
+  }
+  {
+    std::fstream file(part_path, std::ios::binary | std::ios::in | std::ios::out);
+    file.seekp(static_cast<std::streamoff>(count_at_));
+    file << CountLines(complete, /*padded=*/true);
+    if (!file) return IoError(part_path + ": cannot write its point count");
+  }
+  std::error_code ec;
+  std::filesystem::rename(part_path, path_, ec);
+  if (ec) return IoError(path_ + ": cannot rename " + part_path + " (" + ec.message() + ")");
+  return lost.empty() ? Status::Ok() : IoError(lost);
 }
 
 Expected<ColouredCloud> ReadPly(const std::string& path) {
@@ -107,6 +148,7 @@ Expected<ColouredCloud> ReadPly(const std::string& path) {
   std::size_t property = 0;
   while (std::getline(in, line) && line != "end_header") {
     if (line.rfind("comment", 0) == 0) {
+      if (line.find_first_not_of(' ', 7) == std::string::npos) continue;  // padding
       if (!cloud.comment.empty()) cloud.comment += "\n";
       cloud.comment += line.size() > 8 ? line.substr(8) : "";
     } else if (line.rfind("element vertex ", 0) == 0) {

@@ -29,21 +29,25 @@ Status WritePly(const std::string& path, std::span<const Eigen::Vector3f> points
                 std::span<const Rgb> colours, const std::string& comment = "");
 
 /// Writes a PLY file (the layout above) a batch of points at a time, for clouds too large to hold:
-/// the vertices go to `<path>.part` as they come; Close() writes `path` (header with the count,
-/// then the vertices) and removes the part file. A writer not closed leaves only the part file.
+/// the header and the vertices go to `<path>.part` as they come; Close() writes the count into the
+/// header in place (no copy: it needs no more disk) and renames the file to `path`. After a failed
+/// write (a full disk) Close() still leaves a valid `path` with the vertices that reached the disk,
+/// and says how many. A writer not closed leaves only the part file.
 class PlyWriter {
  public:
   /// Creates `<path>.part` (truncating).
-  static Expected<PlyWriter> Open(const std::string& path, std::string comment = "");
+  static Expected<PlyWriter> Open(const std::string& path, const std::string& comment = "");
   /// `colours` must have one entry per point.
   Status Append(std::span<const Eigen::Vector3f> points, std::span<const Rgb> colours);
   Status Close();
   std::size_t size() const { return size_; }
 
  private:
-  PlyWriter(std::string path, std::string comment, std::ofstream part);
-  std::string path_, comment_;
+  PlyWriter(std::string path, std::ofstream part, std::size_t count_at, std::size_t header_bytes);
+  std::string path_;
   std::ofstream part_;
+  std::size_t count_at_ = 0;      ///< offset of the header's count lines
+  std::size_t header_bytes_ = 0;  ///< where the vertices start
   std::size_t size_ = 0;
 };
 
