@@ -1,6 +1,8 @@
 #include "aavio/io/output_folder.hpp"
 
+#include <fcntl.h>
 #include <sys/statvfs.h>
+#include <unistd.h>
 
 #include <cerrno>
 #include <cstring>
@@ -71,6 +73,46 @@ Status PrepareOutputFolder(const std::string& dir, const OutputFolderOptions& op
     }
   }
   return Status::Ok();
+}
+
+std::string CannotWrite(const std::string& path) {
+  const int error = errno;
+  struct statvfs st {};
+  const std::string dir = fs::path(path).parent_path().string();
+  if (error == ENOSPC || (::statvfs(dir.empty() ? "." : dir.c_str(), &st) == 0 && st.f_bavail == 0))
+    return path + ": cannot write (the disk is full)";
+  return path + ": cannot write" +
+         (error != 0 ? " (" + std::string(std::strerror(error)) + ")" : "");
+}
+
+Expected<DiskReserve> DiskReserve::Create(const std::string& path, std::uint64_t bytes) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) return IoError(path + ": cannot create (" + std::strerror(errno) + ")");
+  const int error = bytes > 0 ? ::posix_fallocate(fd, 0, static_cast<off_t>(bytes)) : 0;
+  ::close(fd);
+  if (error != 0) {
+    std::error_code ec;
+    fs::remove(path, ec);
+    return IoError(StrFormat("%s: cannot set aside %.0f MB (%s); free some space", path.c_str(),
+                             static_cast<double>(bytes) / 1048576.0, std::strerror(error)));
+  }
+  return DiskReserve(path);
+}
+
+DiskReserve& DiskReserve::operator=(DiskReserve&& other) noexcept {
+  if (this != &other) {
+    Release();
+    path_ = std::move(other.path_);
+    other.path_.clear();
+  }
+  return *this;
+}
+
+void DiskReserve::Release() {
+  if (path_.empty()) return;
+  std::error_code ec;
+  fs::remove(path_, ec);
+  path_.clear();
 }
 
 }  // namespace aavio::io

@@ -27,4 +27,30 @@ struct OutputFolderOptions {
 /// error naming the folder and the cause.
 Status PrepareOutputFolder(const std::string& dir, const OutputFolderOptions& options);
 
+/// "<path>: cannot write (the disk is full)", or with the system's reason: for a write that failed
+/// without saying why (an image encoder's).
+std::string CannotWrite(const std::string& path);
+
+/// Disk space held back in a file of its own so that a command stopped by a full disk can still
+/// write what it has done (a run's trajectory and summary): Release() frees it for those last
+/// files. Released on destruction as well.
+class DiskReserve {
+ public:
+  /// Allocates `bytes` to the file `path` (posix_fallocate: the blocks are taken, not just
+  /// promised). An error naming the file when the disk cannot give them.
+  static Expected<DiskReserve> Create(const std::string& path, std::uint64_t bytes);
+  DiskReserve(DiskReserve&& other) noexcept : path_(std::move(other.path_)) { other.path_.clear(); }
+  DiskReserve& operator=(DiskReserve&& other) noexcept;
+  DiskReserve(const DiskReserve&) = delete;
+  DiskReserve& operator=(const DiskReserve&) = delete;
+  ~DiskReserve() { Release(); }
+
+  /// Removes the file (once; later calls do nothing).
+  void Release();
+
+ private:
+  explicit DiskReserve(std::string path) : path_(std::move(path)) {}
+  std::string path_;
+};
+
 }  // namespace aavio::io

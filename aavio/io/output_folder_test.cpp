@@ -1,8 +1,10 @@
 #include "aavio/io/output_folder.hpp"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <filesystem>
 #include <fstream>
 
@@ -76,6 +78,43 @@ TEST(OutputFolder, AWriteToAFullDiskIsAnErrorNotASilentLoss) {
   ASSERT_FALSE(s.ok());
   EXPECT_NE(s.message().find("/dev/full: write failed (disk full?)"), std::string::npos)
       << s.message();
+}
+
+TEST(DiskReserve, HoldsItsSpaceUntilReleased) {
+  const fs::path dir = testing::ScratchDir();
+  const std::string path = (dir / ".reserve").string();
+  {
+    Expected<DiskReserve> reserve = DiskReserve::Create(path, 1 << 20);
+    ASSERT_TRUE(reserve.ok()) << reserve.status().message();
+    ASSERT_TRUE(fs::exists(path));
+    struct stat st {};
+    ASSERT_EQ(::stat(path.c_str(), &st), 0);
+    EXPECT_GE(static_cast<std::int64_t>(st.st_blocks) * 512, 1 << 20);  // allocated, not sparse
+    DiskReserve moved = std::move(*reserve);
+    moved.Release();
+    EXPECT_FALSE(fs::exists(path));
+    moved.Release();                                    // once only
+    ASSERT_TRUE(DiskReserve::Create(path, 4096).ok());  // and on destruction
+  }
+  EXPECT_FALSE(fs::exists(path));
+  Expected<DiskReserve> nowhere = DiskReserve::Create((dir / "missing" / "r").string(), 4096);
+  ASSERT_FALSE(nowhere.ok());
+  EXPECT_NE(nowhere.status().message().find("missing/r: cannot create"), std::string::npos)
+      << nowhere.status().message();
+  // More than the disk holds: an error, and no file left.
+  Expected<DiskReserve> huge = DiskReserve::Create(path, ~0ull >> 2);
+  ASSERT_FALSE(huge.ok());
+  EXPECT_NE(huge.status().message().find("cannot set aside"), std::string::npos)
+      << huge.status().message();
+  EXPECT_FALSE(fs::exists(path));
+}
+
+TEST(OutputFolder, CannotWriteSaysWhenTheDiskIsFull) {
+  errno = ENOSPC;
+  EXPECT_EQ(CannotWrite("out/x.png"), "out/x.png: cannot write (the disk is full)");
+  const std::string path = (testing::ScratchDir() / "x.png").string();
+  errno = EACCES;
+  EXPECT_EQ(CannotWrite(path), path + ": cannot write (Permission denied)");
 }
 
 }  // namespace

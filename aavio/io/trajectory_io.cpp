@@ -105,18 +105,20 @@ Expected<std::vector<geometry::StampedPose>> ReadTumTrajectory(const std::string
   return ParseTumTrajectory(buffer.str(), path);
 }
 
-std::string FormatTumTrajectory(const std::vector<geometry::StampedPose>& poses) {
-  std::string out = "# timestamp tx ty tz qx qy qz qw\n";
-  out.reserve(out.size() + poses.size() * 120);
+std::string FormatTumPose(const geometry::StampedPose& pose) {
+  const Eigen::Quaterniond q = pose.T_world_body.Quaternion();
+  const Eigen::Vector3d& t = pose.T_world_body.t;
   char line[256];
-  for (const geometry::StampedPose& pose : poses) {
-    const Eigen::Quaterniond q = pose.T_world_body.Quaternion();
-    const Eigen::Vector3d& t = pose.T_world_body.t;
-    std::snprintf(line, sizeof(line), " %.9f %.9f %.9f %.9f %.9f %.9f %.9f\n", t.x(), t.y(), t.z(),
-                  q.x(), q.y(), q.z(), q.w());
-    out += FormatSecondsNs(pose.t_ns);
-    out += line;
-  }
+  std::snprintf(line, sizeof(line), " %.9f %.9f %.9f %.9f %.9f %.9f %.9f\n", t.x(), t.y(), t.z(),
+                q.x(), q.y(), q.z(), q.w());
+  return FormatSecondsNs(pose.t_ns) + line;
+}
+
+std::string FormatTumTrajectory(const std::vector<geometry::StampedPose>& poses) {
+  std::string out = kTumHeader;
+  out.reserve(out.size() + poses.size() * 120);
+  for (const geometry::StampedPose& pose : poses)
+    out += FormatTumPose(pose);
   return out;
 }
 

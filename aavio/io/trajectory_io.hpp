@@ -23,5 +23,8 @@ Expected<std::vector<geometry::StampedPose>> ParseTumTrajectory(const std::strin
 /// 9-decimal pose values, single spaces.
 Status WriteTumTrajectory(const std::string& path, const std::vector<geometry::StampedPose>& poses);
 std::string FormatTumTrajectory(const std::vector<geometry::StampedPose>& poses);
+/// The header line and one pose's line of that layout, for writing a trajectory as it grows.
+inline constexpr char kTumHeader[] = "# timestamp tx ty tz qx qy qz qw\n";
+std::string FormatTumPose(const geometry::StampedPose& pose);
 
 }  // namespace aavio::io

@@ -34,14 +34,19 @@ std::pair<double, double> MemoryMb() {
 
 // What a run writes into its folder.
 constexpr const char* kRunOutputs[] = {
-    run_files::kTrajectory, run_files::kSummary,   run_files::kTimings, run_files::kConfig,
-    run_files::kCloud,      run_files::kCloudPart, run_files::kDepthDir};
+    run_files::kTrajectory, run_files::kTrajectoryPart, run_files::kSummary,
+    run_files::kTimings,    run_files::kConfig,         run_files::kCloud,
+    run_files::kCloudPart,  run_files::kDepthDir,       run_files::kReserve};
+
+// What Finish needs on a full disk: the trajectory (about 100 bytes a pose) and the cloud's
+// vertices still buffered, config.yaml and summary.json.
+constexpr std::uint64_t kReserveBytes = 16ull << 20;
 
 }  // namespace
 
 RunRecorder::RunRecorder(RunRecorderOptions options, const geometry::StereoRig& rig,
                          const pipeline::OdometryConfig& config, io::DepthFolderWriter depth_writer,
-                         io::PlyWriter cloud_file)
+                         io::PlyWriter cloud_file, io::DiskReserve reserve)
     : options_(std::move(options)),
       config_(config),
       stereo_(mapping::RectifiedStereo::FromRig(rig)),
@@ -55,6 +60,7 @@ RunRecorder::RunRecorder(RunRecorderOptions options, const geometry::StereoRig& 
       cloud_depth_m_(std::min(1.0 / config.mapping.inv_depth_min, 50.0)),
       cloud_(0.005 * cloud_depth_m_),
       cloud_file_(std::move(cloud_file)),
+      reserve_(std::move(reserve)),
       colours_(config.mapping.inv_depth_min, config.mapping.inv_depth_max),
       event_gaps_(options_.begin_ns) {}
 
@@ -70,8 +76,15 @@ Expected<std::unique_ptr<RunRecorder>> RunRecorder::Open(RunRecorderOptions opti
   Expected<io::PlyWriter> cloud = io::PlyWriter::Open((out / run_files::kCloud).string(),
                                                       "aavio global map (world frame, metres)");
   if (!cloud) return cloud.status();
-  std::unique_ptr<RunRecorder> recorder(
-      new RunRecorder(std::move(options), rig, config, std::move(*depth), std::move(*cloud)));
+  Expected<io::DiskReserve> reserve =
+      io::DiskReserve::Create((out / run_files::kReserve).string(), kReserveBytes);
+  if (!reserve) return reserve.status();
+  std::unique_ptr<RunRecorder> recorder(new RunRecorder(
+      std::move(options), rig, config, std::move(*depth), std::move(*cloud), std::move(*reserve)));
+  const fs::path part = out / run_files::kTrajectoryPart;
+  recorder->trajectory_file_.open(part, std::ios::binary | std::ios::trunc);
+  recorder->trajectory_file_ << io::kTumHeader;
+  if (!recorder->trajectory_file_) return IoError(part.string() + ": cannot write");
   return recorder;
 }
 
@@ -154,6 +167,7 @@ Status RunRecorder::AddConfirmedMap(const mapping::LocalMap& map,
 Status RunRecorder::AddTick(const pipeline::OdometryTick& t) {
   AddRepresentation(t.t_ns, t.representation);
   trajectory_.push_back({t.t_ns, t.T_world_cam});
+  trajectory_file_ << io::FormatTumPose(trajectory_.back());
   event_gaps_.Add(t.t_ns, t.new_events_left, t.new_events_right);
   status_counts_[tracking::TrackingStatusName(t.status)]++;
   if (t.status == tracking::TrackingStatus::kLost)
@@ -199,7 +213,12 @@ Status RunRecorder::AddTick(const pipeline::OdometryTick& t) {
       t.status == tracking::TrackingStatus::kLost ? tracking::LostReasonName(t.lost_reason) : "",
       static_cast<long long>(events_since_tick_));
   events_since_tick_ = 0;
-  return csv_ ? Status::Ok() : IoError(options_.out_dir + "/timings.csv: write failed");
+  if (!csv_) return IoError(options_.out_dir + "/timings.csv: write failed (disk full?)");
+  if (!trajectory_file_) {
+    return IoError(options_.out_dir + "/" + run_files::kTrajectoryPart +
+                   ": write failed (disk full?)");
+  }
+  return Status::Ok();
 }
 
 void RunRecorder::AddMappingTick(TimeNs t_ns, const events::RepresentationTimings& timings) {
@@ -241,21 +260,46 @@ Status RunRecorder::AddMappingCycle(const pipeline::MappingCycle& cycle) {
   return Status::Ok();
 }
 
+Status RunRecorder::CloseTrajectory() {
+  const fs::path out(options_.out_dir);
+  const fs::path part = out / run_files::kTrajectoryPart;
+  const fs::path path = out / run_files::kTrajectory;
+  trajectory_file_.close();
+  std::error_code ec;
+  if (trajectory_.empty()) {  // no tick: no trajectory file
+    fs::remove(part, ec);
+    return Status::Ok();
+  }
+  if (trajectory_file_) {
+    fs::rename(part, path, ec);
+    if (!ec) return Status::Ok();
+  }
+  // A write failed on the way (a full disk): written again whole, in the part file's place.
+  fs::remove(part, ec);
+  return io::WriteTumTrajectory(path.string(), trajectory_);
+}
+
 Expected<RunRecord> RunRecorder::Finish(bool interrupted, TimeNs end_ns,
                                         const nlohmann::json& extra) {
   RunRecord record;
   record.wall_s = std::chrono::duration<double>(Clock::now() - wall_start_).count();
   record.data_s = NsToSeconds(std::max(end_ns, options_.begin_ns) - options_.begin_ns);
   const fs::path out(options_.out_dir);
-  if (csv_.is_open()) csv_.close();
-  if (!trajectory_.empty()) {
-    AAVIO_RETURN_IF_ERROR(
-        io::WriteTumTrajectory((out / run_files::kTrajectory).string(), trajectory_));
+  // Every file that can be written is, whatever failed before it (a full disk: the space held
+  // back is given to these last files); the failures are listed in the summary.
+  reserve_.reset();
+  std::vector<Status> failures;
+  auto keep = [&failures](Status status) {
+    if (!status.ok()) failures.push_back(std::move(status));
+  };
+  if (csv_.is_open()) {
+    csv_.close();
+    if (!csv_) keep(IoError((out / run_files::kTimings).string() + ": write failed (disk full?)"));
   }
-  AAVIO_RETURN_IF_ERROR(
-      io::WriteTextFile((out / run_files::kConfig).string(), options_.config_yaml));
-  AAVIO_RETURN_IF_ERROR(cloud_file_.Close());
-  AAVIO_RETURN_IF_ERROR(depth_writer_.Finish());
+  keep(CloseTrajectory());
+  keep(io::WriteTextFile((out / run_files::kConfig).string(), options_.config_yaml));
+  keep(cloud_file_.Close());
+  keep(depth_writer_.Finish());
 
   // Accuracy against the ground truth (what `aavio eval --run` computes, se3-aligned).
   if (truth_ && !trajectory_.empty()) {
@@ -325,8 +369,14 @@ Expected<RunRecord> RunRecorder::Finish(bool interrupted, TimeNs end_ns,
   if (record.depth) s["depth"] = DepthJson(*record.depth);
   if (record.depth && record.sample_ceiling)
     s["depth"]["sample_ceiling"] = CoverageJson(*record.sample_ceiling);
+  if (!failures.empty()) {
+    s["incomplete_outputs"] = nlohmann::json::array();
+    for (const Status& failure : failures)
+      s["incomplete_outputs"].push_back(failure.message());
+  }
   s.update(extra);
-  AAVIO_RETURN_IF_ERROR(io::WriteTextFile((out / run_files::kSummary).string(), s.dump(2) + "\n"));
+  keep(io::WriteTextFile((out / run_files::kSummary).string(), s.dump(2) + "\n"));
+  if (!failures.empty()) return failures.front();
   return record;
 }
 

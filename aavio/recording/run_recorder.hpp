@@ -5,7 +5,9 @@
 /// keeps the trajectory, the per-stage timings and the status counts; writes timings.csv as it
 /// goes, every confirmed local map into the global cloud and five a second into `depth/`; scores
 /// depth against the sequence's ground truth as the maps are made (no file is read back); and at
-/// Finish writes stamped_traj_estimate.txt, map.ply, config.yaml and summary.json.
+/// Finish writes stamped_traj_estimate.txt, map.ply, config.yaml and summary.json. The trajectory
+/// and the cloud are on disk as they grow (as .part files), and 16 MB are held back from the start
+/// (io::DiskReserve), so that a run stopped by a full disk still finishes with valid outputs.
 
 #include <array>
 #include <chrono>
@@ -20,6 +22,7 @@
 #include "aavio/eval/sample_ceiling.hpp"
 #include "aavio/geometry/stereo_rig.hpp"
 #include "aavio/io/depth_folder_writer.hpp"
+#include "aavio/io/output_folder.hpp"
 #include "aavio/io/ply.hpp"
 #include "aavio/mapping/global_cloud.hpp"
 #include "aavio/pipeline/mapping_front_end.hpp"
@@ -37,12 +40,14 @@ namespace aavio::recording {
 /// report` and the Python module's load_run).
 namespace run_files {
 inline constexpr char kTrajectory[] = "stamped_traj_estimate.txt";
+inline constexpr char kTrajectoryPart[] = "stamped_traj_estimate.txt.part";  ///< while it goes
 inline constexpr char kSummary[] = "summary.json";
 inline constexpr char kTimings[] = "timings.csv";
 inline constexpr char kConfig[] = "config.yaml";
 inline constexpr char kCloud[] = "map.ply";
 inline constexpr char kCloudPart[] = "map.ply.part";  ///< map.ply's points while the run goes
 inline constexpr char kDepthDir[] = "depth";
+inline constexpr char kReserve[] = ".aavio_reserve";  ///< space for Finish on a full disk
 }  // namespace run_files
 
 struct RunRecorderOptions {
@@ -92,7 +97,9 @@ class RunRecorder {
   Status AddMappingCycle(const pipeline::MappingCycle& cycle);
 
   /// Writes everything. `end_ns`: the data time processed up to; `extra` is merged into
-  /// summary.json.
+  /// summary.json. Writes every file it can even after a failure (a full disk: the space held
+  /// back is released first), lists the failures in summary.json "incomplete_outputs" and then
+  /// returns the first.
   Expected<RunRecord> Finish(bool interrupted, TimeNs end_ns,
                              const nlohmann::json& extra = nlohmann::json::object());
 
@@ -104,8 +111,10 @@ class RunRecorder {
  private:
   RunRecorder(RunRecorderOptions options, const geometry::StereoRig& rig,
               const pipeline::OdometryConfig& config, io::DepthFolderWriter depth_writer,
-              io::PlyWriter cloud_file);
+              io::PlyWriter cloud_file, io::DiskReserve reserve);
   void AddRepresentation(TimeNs t_ns, const events::RepresentationTimings& t);
+  /// stamped_traj_estimate.txt from its part file, or from memory if a write to that failed.
+  Status CloseTrajectory();
   void AddCycleReport(const mapping::MappingCycleReport& r);
   /// A confirmed map: into the cloud, and every depth_every_-th into depth/ (scored there in the
   /// odometry's modes), drawn over the time surface of `observation` (may be null).
@@ -121,7 +130,9 @@ class RunRecorder {
   int depth_every_;
   double cloud_depth_m_;
   mapping::GlobalCloud cloud_;
-  io::PlyWriter cloud_file_;  ///< the cloud's points go to disk as they come
+  io::PlyWriter cloud_file_;       ///< the cloud's points go to disk as they come
+  std::ofstream trajectory_file_;  ///< the poses too (stamped_traj_estimate.txt.part)
+  std::optional<io::DiskReserve> reserve_;
   InverseDepthColours colours_;
   std::optional<RunGroundTruth> truth_;
   std::vector<geometry::StampedPose> gt_poses_;

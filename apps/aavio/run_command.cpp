@@ -180,14 +180,16 @@ void PrintRun(const recording::RunRecord& record, const RunOptions& options,
 struct Fed {
   TimeNs last_t = 0;  ///< the data time processed up to
   bool interrupted = false;
+  Status stopped_by = Status::Ok();  ///< an error that ended the run early (input or output)
 };
 
 // Feeds the packets of [begin, end) to `process` (decoded on a thread of their own, up to 50
-// packets ahead), counting them in the recorder, with progress on a terminal; Ctrl-C stops.
-Expected<Fed> FeedPackets(io::SequenceReader* reader, TimeNs begin, TimeNs end,
-                          recording::RunRecorder* recorder,
-                          const std::function<Status(const io::SensorPacket&, TimeNs)>& process,
-                          bool progress, Context& ctx) {
+// packets ahead), counting them in the recorder, with progress on a terminal; Ctrl-C stops, and
+// so does an error, which is returned in Fed with the time reached.
+Fed FeedPackets(io::SequenceReader* reader, TimeNs begin, TimeNs end,
+                recording::RunRecorder* recorder,
+                const std::function<Status(const io::SensorPacket&, TimeNs)>& process,
+                bool progress, Context& ctx) {
   io::PrefetchingReader prefetching(reader, 50);
   const auto wall_start = Clock::now();
   io::SensorPacket packet;
@@ -229,7 +231,7 @@ Expected<Fed> FeedPackets(io::SequenceReader* reader, TimeNs begin, TimeNs end,
   std::signal(SIGINT, previous_int);
   std::signal(SIGTERM, previous_term);
   if (progress) ctx.err << "\r" << std::string(90, ' ') << "\r";
-  if (!status.ok()) return status;
+  fed.stopped_by = status;
   return fed;
 }
 
@@ -330,7 +332,7 @@ Expected<bool> Run(RunOptions options, Context& ctx) {
     }
   }
 
-  const auto fed = FeedPackets(
+  const Fed fed = FeedPackets(
       reader, begin, end, &recorder,
       [&](const io::SensorPacket& packet, TimeNs t_end) {
         Status status = Status::Ok();
@@ -344,10 +346,12 @@ Expected<bool> Run(RunOptions options, Context& ctx) {
         return status.ok() ? callback_status : status;
       },
       !options.quiet && isatty(STDERR_FILENO), ctx);
-  if (!fed) return fed.status();
   odometry.reset();  // a mapping cycle still running finishes here
 
+  // Stopped by an error (a full disk, a corrupt stretch of the input): what was done until then
+  // is written all the same, and the error is the command's result.
   nlohmann::json extra = nlohmann::json::object();
+  if (!fed.stopped_by.ok()) extra["stopped_by"] = fed.stopped_by.message();
   if (options.repeat > 1) extra["repeat"] = options.repeat;
   std::optional<RelativeError100Ms> tracking_error;
   if (options.gt_map) {
@@ -357,10 +361,20 @@ Expected<bool> Run(RunOptions options, Context& ctx) {
                           {"translation_m_rmse", tracking_error->translation_m_rmse},
                           {"pairs", tracking_error->pairs}};
   }
-  Expected<recording::RunRecord> record = recorder.Finish(fed->interrupted, fed->last_t, extra);
+  Expected<recording::RunRecord> record = recorder.Finish(fed.interrupted, fed.last_t, extra);
+  if (!fed.stopped_by.ok()) {
+    return Status(
+        fed.stopped_by.code(),
+        StrFormat("%s\nthe run stopped there, after %.2f s of data; %s %s",
+                  fed.stopped_by.message().c_str(), NsToSeconds(fed.last_t - begin),
+                  options.out_dir.c_str(),
+                  record ? "holds what was done until then"
+                         : ("holds what could be written of it (" + record.status().message() + ")")
+                               .c_str()));
+  }
   if (!record) return record.status();
   PrintRun(*record, options, tracking_error, EnumName(config->imu.mode), ctx);
-  return fed->interrupted;
+  return fed.interrupted;
 }
 
 }  // namespace
