@@ -169,16 +169,16 @@ Expected<ColouredCloud> ReadPly(const std::string& path) {
   if (vertices < 0 || property != std::size(kProperties))
     return ParseError(path + ": the header lacks the vertex element or some of its properties");
   // The header's count against what the file holds, before anything is allocated for it.
-  constexpr long long kVertexBytes = 3 * sizeof(float) + 3;
+  const auto vertex_bytes = static_cast<long long>(kVertexBytes);
   const std::streamoff body_start = in.tellg();
   in.seekg(0, std::ios::end);
   const long long body_bytes = static_cast<long long>(in.tellg() - body_start);
   in.seekg(body_start);
-  if (vertices > body_bytes / kVertexBytes) {
+  if (vertices > body_bytes / vertex_bytes) {
     return ParseError(
         StrFormat("%s: the header declares %lld vertices but the file holds %lld "
                   "(%lld bytes of %lld each); the file is cut short or its header is wrong",
-                  path.c_str(), vertices, body_bytes / kVertexBytes, body_bytes, kVertexBytes));
+                  path.c_str(), vertices, body_bytes / vertex_bytes, body_bytes, vertex_bytes));
   }
   cloud.points.resize(static_cast<std::size_t>(vertices));
   cloud.colours.resize(static_cast<std::size_t>(vertices));
