@@ -8,6 +8,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -20,12 +21,19 @@
 
 namespace aavio::fuzz {
 
-/// A file per process and name, under the system's temporary folder, rewritten per input.
+/// A file per process and name, under the system's temporary folder, rewritten per input; the
+/// folder is removed when the process exits.
 inline std::string WriteInput(const std::string& name, const std::uint8_t* data, std::size_t size) {
   static const std::filesystem::path dir = [] {
     std::filesystem::path d =
         std::filesystem::temp_directory_path() / ("aavio_fuzz_" + std::to_string(::getpid()));
     std::filesystem::create_directories(d);
+    std::atexit([] {
+      std::error_code ec;
+      std::filesystem::remove_all(
+          std::filesystem::temp_directory_path() / ("aavio_fuzz_" + std::to_string(::getpid())),
+          ec);
+    });
     return d;
   }();
   const std::filesystem::path path = dir / name;
