@@ -142,7 +142,11 @@ TrackingResult Tracker::Track(const events::Observation& obs, const cv::Mat& val
     velocity_ *= static_cast<double>(dt_ns) / static_cast<double>(velocity_dt_ns_);
   }
   velocity_dt_ns_ = dt_ns;
-  geometry::RigidTransform predicted = PredictPose(T_prev_, T_prevprev_, delta_R_cam, velocity_);
+  // velocity_gain 0 is ESVO's zero-motion model: the rotation is held too (else, without the
+  // gyroscope, it continues the last tick's).
+  const bool zero_motion = config_.velocity_gain == 0.0;
+  geometry::RigidTransform predicted =
+      PredictPose(T_prev_, zero_motion ? std::nullopt : T_prevprev_, delta_R_cam, velocity_);
   // Full mode: the back-end's 6-DoF prediction; at rest (a standstill the IMU sees), the pose
   // holds.
   const bool at_rest = back_end_ && back_end_->ready() && back_end_->AtRest(t_prev_, obs.t_ns);

@@ -232,6 +232,49 @@ TEST(Tracker, LostTicksCoastOnTheVelocity) {
   EXPECT_NEAR(x_held_again, 2.0 * step, 1e-9);
 }
 
+// velocity_gain 0 is ESVO's zero-motion model: each tick starts from the previous pose, rotation
+// included; otherwise (no gyroscope) the rotation of the last tick is continued.
+TEST(Tracker, ZeroMotionStartsEachTickAtThePreviousPose) {
+  const std::vector<Eigen::Vector3d> map_points = EdgeMap(7);
+  auto map = std::make_shared<TrackingMap>();
+  map->points_world = map_points;
+  auto pose_at = [](int tick) {
+    geometry::RigidTransform T;
+    T.R = geometry::ExpSO3(Eigen::Vector3d(0, 0.5 * tick * M_PI / 180.0, 0));
+    T.t = {0.01 * tick, 0.0, 0.0};
+    return T;
+  };
+  // The third tick's prediction after two tracked ticks of a steady turn.
+  auto third_prediction = [&](double velocity_gain, geometry::RigidTransform* second) {
+    TrackingConfig config;
+    config.max_iterations = 20;
+    config.velocity_gain = velocity_gain;
+    Tracker tracker(kCamera, config, imu::ImuConfig{}, geometry::RigidTransform{}, 3);
+    tracker.Reset(0, pose_at(0));
+    tracker.SetMap(map);
+    TrackingResult r;
+    for (int tick = 1; tick <= 3; ++tick) {
+      const testing::Images images = Render(map_points, pose_at(tick));
+      events::Observation obs;
+      obs.t_ns = tick * 10 * kNsPerMs;
+      obs.negative_ts_left = images.negative;
+      obs.grad_u = images.du;
+      obs.grad_v = images.dv;
+      if (tick == 3) *second = r.T_world_cur;
+      r = tracker.Track(obs, images.valid, {});
+      EXPECT_EQ(r.status, TrackingStatus::kOk) << tick;
+    }
+    return r.T_world_predicted;
+  };
+  geometry::RigidTransform second;
+  const geometry::RigidTransform held = third_prediction(0.0, &second);
+  EXPECT_LT(RotationDeg(held.R, second.R), 1e-9);
+  EXPECT_LT((held.t - second.t).norm(), 1e-12);
+  const geometry::RigidTransform continued = third_prediction(1.0, &second);
+  EXPECT_NEAR(RotationDeg(continued.R, second.R), 0.5, 0.1);
+  EXPECT_NEAR((continued.t - second.t).norm(), 0.01, 0.003);
+}
+
 // imu.mode full: 1.5 s tracked, then 0.4 s without events carried on the IMU alone, then events
 // again. The camera sways and moves forward; a perfect IMU on the camera, gravity along +y.
 TEST(Tracker, FullImuCarriesTheStretchWithoutEventsAndTrackingResumes) {

@@ -20,7 +20,8 @@ struct TrackingConfig {
   double max_correction_m = 0.3;
   /// Translation prediction: the velocity per tick is v ← g·Δt + (1 − g)·v over tracked ticks
   /// (reset to 0 without a map). 1 = constant velocity of the last tick ([ICRA]); smaller values
-  /// average the registration's noise out of the prediction; 0 = zero motion ([ESVO]).
+  /// average the registration's noise out of the prediction; 0 = zero motion ([ESVO]): the
+  /// previous pose is the prediction, its rotation too unless the gyroscope gives one.
   double velocity_gain = 1.0;
   /// aavio: on a lost tick the pose coasts on the velocity, which is then multiplied by this.
   /// 1 keeps it (a car does not stop because a registration failed); 0 holds the pose from the
@@ -51,7 +52,7 @@ struct TrackingConfig {
       "a registration further than this from the prediction is lost [deg]");
     v("max_correction_m", max_correction_m, "... or further than this [m]");
     v("velocity_gain", velocity_gain,
-      "constant-velocity smoothing: 1 last tick's velocity, 0 zero motion");
+      "constant-velocity smoothing: 1 last tick's velocity, 0 zero motion (ESVO)");
     v("lost_velocity_decay", lost_velocity_decay,
       "the velocity is multiplied by it on each lost tick (aavio)");
     v("gyro_rotation_weight", gyro_rotation_weight,
