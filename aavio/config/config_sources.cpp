@@ -10,6 +10,17 @@ namespace aavio::config {
 
 namespace {
 
+// A shipped overlay, and what of it depends on the sensor (ESVO's event budget per dataset).
+Status ApplyOverlay(const std::string& name, const ConfigSources& sources,
+                    pipeline::OdometryConfig* config) {
+  Expected<std::vector<ConfigEntry>> entries = io::OverlayEntries(name);
+  if (!entries) return entries.status();
+  AAVIO_RETURN_IF_ERROR(ApplyConfigEntries(*entries, config));
+  if (name != "esvo" || !sources.sensor) return Status::Ok();
+  return ApplyConfigEntries(
+      pipeline::ToConfigEntries(pipeline::EsvoSensorSettings(*sources.sensor)), config);
+}
+
 // Applies the preset, the files, the overlays and the --set overrides onto `config`.
 Status ApplySources(const ConfigSources& sources, pipeline::OdometryConfig* config) {
   if (!sources.preset.empty()) {
@@ -22,16 +33,16 @@ Status ApplySources(const ConfigSources& sources, pipeline::OdometryConfig* conf
     // A shipped overlay's name, unless a file of that name is here.
     const bool overlay = std::find(overlays.begin(), overlays.end(), file) != overlays.end() &&
                          !std::filesystem::exists(file);
-    Expected<std::vector<ConfigEntry>> entries =
-        overlay ? io::OverlayEntries(file) : io::ReadConfigYaml(file);
+    if (overlay) {
+      AAVIO_RETURN_IF_ERROR(ApplyOverlay(file, sources, config));
+      continue;
+    }
+    Expected<std::vector<ConfigEntry>> entries = io::ReadConfigYaml(file);
     if (!entries) return entries.status();
     AAVIO_RETURN_IF_ERROR(ApplyConfigEntries(*entries, config));
   }
-  for (const std::string& name : sources.overlays) {
-    Expected<std::vector<ConfigEntry>> entries = io::OverlayEntries(name);
-    if (!entries) return entries.status();
-    AAVIO_RETURN_IF_ERROR(ApplyConfigEntries(*entries, config));
-  }
+  for (const std::string& name : sources.overlays)
+    AAVIO_RETURN_IF_ERROR(ApplyOverlay(name, sources, config));
   std::vector<ConfigEntry> overrides;
   for (const std::string& text : sources.overrides) {
     Expected<ConfigEntry> entry = ParseKeyValueOverride(text);

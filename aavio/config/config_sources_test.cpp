@@ -34,6 +34,26 @@ TEST(ConfigSources, AProgramConfiguresForItsRigInTwoCalls) {
   EXPECT_EQ(overridden->mapping.rate_hz, 5.0);
 }
 
+// The esvo overlay takes ESVO's event budget of the dataset: 1 000 newest events on rpg's
+// DAVIS240C, 10 000 on DSEC's rig; whether named by --esvo or --config, and --set still wins.
+TEST(ConfigSources, TheEsvoOverlayTakesEsvosBudgetForTheSensor) {
+  auto budget = [](const std::string& rig, ConfigSources sources) {
+    ConfigureForRig(Rig(rig), &sources);
+    Expected<pipeline::OdometryConfig> config = ResolveOdometryConfig(sources);
+    EXPECT_TRUE(config.ok()) << config.status().message();
+    EXPECT_EQ(config->edge_sampling.num_points, config->mapping.max_points);
+    return config->edge_sampling.num_points;
+  };
+  EXPECT_EQ(budget("rpg", {.overlays = {"esvo"}}), 1000);
+  EXPECT_EQ(budget("rpg", {.files = {"esvo"}}), 1000);
+  EXPECT_EQ(budget("dsec", {.overlays = {"esvo"}}), 10000);
+  EXPECT_EQ(budget("rpg", {}), 2000);  // AA's budget without the overlay
+  EXPECT_EQ(
+      budget("rpg", {.overlays = {"esvo"},
+                     .overrides = {"edge_sampling.num_points=3000", "mapping.max_points=3000"}}),
+      3000);
+}
+
 TEST(ConfigSources, BadSourcesAreErrorsThatSayWhatToDo) {
   ConfigSources old_name{.preset = "rpg"};
   Expected<pipeline::OdometryConfig> a = ResolveOdometryConfig(old_name);

@@ -88,6 +88,12 @@ std::vector<SensorSetting> DeriveSensorSettings(const SensorFacts& sensor,
   return s;
 }
 
+std::vector<SensorSetting> EsvoSensorSettings(const SensorFacts& sensor) {
+  if (static_cast<long>(sensor.width_px) * sensor.height_px >= kSmallSensorPixels) return {};
+  const std::string rule = "ESVO on a sensor under 0.1 Mpx: its rpg budget of 1000 newest events";
+  return {{"edge_sampling.num_points", "1000", rule}, {"mapping.max_points", "1000", rule}};
+}
+
 std::vector<ConfigEntry> ToConfigEntries(const std::vector<SensorSetting>& settings) {
   std::vector<ConfigEntry> entries;
   for (const SensorSetting& s : settings) {

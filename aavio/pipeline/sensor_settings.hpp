@@ -45,6 +45,11 @@ struct SensorSetting {
 std::vector<SensorSetting> DeriveSensorSettings(const SensorFacts& sensor,
                                                 const OdometryConfig& scene);
 
+/// ESVO's settings that depend on the sensor, applied after the esvo overlay (`aavio run --esvo`):
+/// its configurations take the newest 1 000 events on rpg's DAVIS240C (under 0.1 Mpx) and
+/// 10 000 on DSEC's 640×480 (the overlay's value; nothing to add there).
+std::vector<SensorSetting> EsvoSensorSettings(const SensorFacts& sensor);
+
 /// The settings as configuration entries, to apply before a preset's (each entry's origin names
 /// its rule, for messages).
 std::vector<ConfigEntry> ToConfigEntries(const std::vector<SensorSetting>& settings);

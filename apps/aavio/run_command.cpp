@@ -392,8 +392,8 @@ void RegisterRun(CLI::App& app, Context& ctx) {
   sub->add_flag("--gt-poses", options->gt_poses,
                 "Mapping only, with the sequence's ground-truth poses instead of tracking");
   sub->add_flag("--esvo", options->esvo,
-                "ESVO-like mode: newest-event selection of 10k points, static stereo only, no "
-                "IMU prior");
+                "ESVO-like mode: newest-event selection of 10k points (1k under 0.1 Mpx), "
+                "static stereo only, no IMU prior, zero-motion prediction");
   sub->add_flag("--real-time", options->real_time,
                 "Maps reach tracking as soon as they are done and cycles are skipped while one "
                 "runs (pipeline.real_time): for live input, not bit-reproducible");
