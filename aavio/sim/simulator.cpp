@@ -37,7 +37,7 @@ namespace {
 void DropDisturbedEvents(const std::vector<Disturbance>& disturbances, TimeNs t_begin,
                          std::vector<events::Event> batch[2]) {
   for (const Disturbance& d : disturbances) {
-    if (d.kind == Disturbance::Kind::kFastMotion) continue;
+    if (d.kind != Disturbance::Kind::kDark && d.kind != Disturbance::Kind::kRightOff) continue;
     for (int side = d.kind == Disturbance::Kind::kDark ? 0 : 1; side < 2; ++side) {
       std::erase_if(batch[side], [&](const events::Event& e) {
         return d.Covers(NsToSeconds(e.t_ns - t_begin));

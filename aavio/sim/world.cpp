@@ -1,5 +1,6 @@
 #include "aavio/sim/world.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "aavio/common/config_fields.hpp"
@@ -11,18 +12,27 @@
 namespace aavio::sim {
 namespace {
 
-// The fast-motion stretches as a warp of time: in a stretch of D seconds at factor K the motion
-// runs at a speed that rises from 1 to K over its first quarter (a raised cosine), holds, and
-// falls back over its last quarter, so speed and acceleration stay continuous (a shake, not a
-// jump). Such a stretch covers D + (K − 1)·(3/4)·D seconds of the motion.
+// The fast-motion and stop stretches as a warp of time: in a stretch of D seconds at factor K
+// (0 for a stop) the motion runs at a speed that goes from 1 to K over its first quarter (a
+// raised cosine), holds, and goes back over its last quarter, so speed and acceleration stay
+// continuous (a shake or a braking, not a jump). Such a stretch covers D + (K − 1)·(3/4)·D
+// seconds of the motion.
+double Factor(const Disturbance& d) {
+  return d.kind == Disturbance::Kind::kStop ? 0.0 : d.factor;
+}
+
+bool WarpsTime(const Disturbance& d) {
+  return d.kind == Disturbance::Kind::kFastMotion || d.kind == Disturbance::Kind::kStop;
+}
+
 double Speed(const std::vector<Disturbance>& disturbances, double t_s) {
   double speed = 1.0;
   for (const Disturbance& d : disturbances) {
-    if (d.kind != Disturbance::Kind::kFastMotion || !d.Covers(t_s)) continue;
+    if (!WarpsTime(d) || !d.Covers(t_s)) continue;
     const double ramp = 0.25 * d.duration_s;
     const double into = std::min(t_s - d.start_s, d.start_s + d.duration_s - t_s);
     const double w = into >= ramp ? 1.0 : 0.5 - 0.5 * std::cos(M_PI * into / ramp);
-    speed += (d.factor - 1.0) * w;
+    speed += (Factor(d) - 1.0) * w;
   }
   return speed;
 }
@@ -30,22 +40,37 @@ double Speed(const std::vector<Disturbance>& disturbances, double t_s) {
 double ExtraMotionS(const std::vector<Disturbance>& disturbances) {
   double extra = 0.0;
   for (const Disturbance& d : disturbances) {
-    if (d.kind == Disturbance::Kind::kFastMotion) extra += (d.factor - 1.0) * 0.75 * d.duration_s;
+    if (WarpsTime(d)) extra += (Factor(d) - 1.0) * 0.75 * d.duration_s;
   }
   return extra;
 }
 
 // Restamps the poses (stamps in motion time) to data time through the warp above: data time
-// advances by dt while the motion advances by Speed·dt (integrated in 0.1 ms steps).
-void SpeedUp(const std::vector<Disturbance>& disturbances,
-             std::vector<geometry::StampedPose>* poses) {
-  if (poses->empty() || ExtraMotionS(disturbances) == 0.0) return;
+// advances by dt while the motion advances by Speed·dt (integrated in 0.1 ms steps). A stop's
+// standstill holds no pose of the motion, so it gets its own: the pose where the motion stops,
+// every 50 ms of the standstill, which keeps the spline through the poses standing still.
+void WarpTime(const std::vector<Disturbance>& disturbances,
+              std::vector<geometry::StampedPose>* poses) {
+  if (poses->empty() || std::none_of(disturbances.begin(), disturbances.end(), WarpsTime)) return;
   const TimeNs t0 = poses->front().t_ns;
   constexpr double kStep_s = 1e-4;
+  struct Hold {
+    double begin_s, end_s;   // data time, seconds from the start
+    double motion_s = -1.0;  // motion time where it stands, once reached
+  };
+  std::vector<Hold> holds;
+  for (const Disturbance& d : disturbances) {
+    if (d.kind == Disturbance::Kind::kStop)
+      holds.push_back({d.start_s + 0.25 * d.duration_s, d.start_s + 0.75 * d.duration_s});
+  }
+  const std::vector<geometry::StampedPose> motion = *poses;
   double t = 0.0, u = 0.0;  // data time and motion time, seconds from the start
   for (geometry::StampedPose& p : *poses) {
     const double target = NsToSeconds(p.t_ns - t0);
     while (u < target) {
+      for (Hold& hold : holds) {
+        if (hold.motion_s < 0.0 && t >= hold.begin_s) hold.motion_s = u;
+      }
       const double du = Speed(disturbances, t) * kStep_s;
       if (u + du >= target) {
         t += (target - u) / du * kStep_s;
@@ -56,6 +81,33 @@ void SpeedUp(const std::vector<Disturbance>& disturbances,
       t += kStep_s;
     }
     p.t_ns = t0 + SecondsToNs(t);
+  }
+  constexpr double kHoldStep_s = 0.05;
+  for (const Hold& hold : holds) {
+    if (hold.motion_s < 0.0) continue;  // the motion ends before it
+    const TimeNs u_ns = t0 + SecondsToNs(hold.motion_s);
+    auto after =
+        std::upper_bound(motion.begin(), motion.end(), u_ns,
+                         [](TimeNs t_ns, const geometry::StampedPose& q) { return t_ns < q.t_ns; });
+    if (after == motion.begin() || after == motion.end()) continue;
+    const geometry::StampedPose& a = *(after - 1);
+    const double alpha =
+        static_cast<double>(u_ns - a.t_ns) / static_cast<double>(after->t_ns - a.t_ns);
+    const geometry::RigidTransform T_stop =
+        geometry::InterpolatePose(a.T_world_body, after->T_world_body, alpha);
+    std::vector<geometry::StampedPose> standstill;
+    for (double s = hold.begin_s; s <= hold.end_s; s += kHoldStep_s)
+      standstill.push_back({t0 + SecondsToNs(s), T_stop});
+    // The warped poses strictly inside the standstill (at most one, where the motion stops)
+    // give way to it.
+    std::erase_if(*poses, [&](const geometry::StampedPose& q) {
+      return q.t_ns >= standstill.front().t_ns - SecondsToNs(0.5 * kHoldStep_s) &&
+             q.t_ns <= standstill.back().t_ns + SecondsToNs(0.5 * kHoldStep_s);
+    });
+    poses->insert(
+        std::upper_bound(poses->begin(), poses->end(), standstill.front().t_ns,
+                         [](TimeNs t_ns, const geometry::StampedPose& q) { return t_ns < q.t_ns; }),
+        standstill.begin(), standstill.end());
   }
 }
 
@@ -90,7 +142,7 @@ Expected<CameraPath> FollowedMotion(const SimulationRequest& request,
 
 Expected<CameraPath> BuildMotion(const SimulationRequest& request, const SimulationPreset& preset) {
   Expected<CameraPath> path = FollowedMotion(request, preset, ExtraMotionS(request.disturbances));
-  if (path) SpeedUp(request.disturbances, &path->poses);
+  if (path) WarpTime(request.disturbances, &path->poses);
   return path;
 }
 

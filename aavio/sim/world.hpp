@@ -21,10 +21,13 @@ namespace aavio::sim {
 /// odometry loses and regains tracking. Times in seconds of data from the sequence's start.
 struct Disturbance {
   enum class Kind {
-    kDark,       ///< no events from either camera (the lights go out, a lens is covered)
-    kRightOff,   ///< the right camera sends nothing (unplugged)
-    kFastMotion  ///< the camera moves up to `factor` times faster than the motion it follows
-                 ///< (speeding up over the first quarter of the stretch, slowing over the last)
+    kDark,        ///< no events from either camera (the lights go out, a lens is covered)
+    kRightOff,    ///< the right camera sends nothing (unplugged)
+    kFastMotion,  ///< the camera moves up to `factor` times faster than the motion it follows
+                  ///< (speeding up over the first quarter of the stretch, slowing over the last)
+    kStop  ///< the camera slows to a standstill over the first quarter of the stretch, stands
+           ///< still for the middle half and starts again over the last quarter (a car at a
+           ///< red light)
   };
   Kind kind = Kind::kDark;
   double start_s = 0.0;
@@ -48,7 +51,7 @@ struct SimulationRequest {
   bool preview = false;
   std::string sensor = "typical";         ///< ideal | typical | harsh | a sensor YAML file
   std::vector<std::string> effects;       ///< only these effects of the sensor (empty: all)
-  std::vector<Disturbance> disturbances;  ///< darkness, a camera off, too fast a motion
+  std::vector<Disturbance> disturbances;  ///< darkness, a camera off, too fast a motion, a stop
 
   /// Errors name the field and its bounds (durations up to a day).
   Status Validate() const;

@@ -74,6 +74,11 @@ TEST(Options, AbsurdValuesNameTheOptionAndItsRange) {
             std::string::npos)
       << err.str();
   err.str("");
+  EXPECT_EQ(RunCli({"aavio", "simulate", "--out", "x", "--stop", "1:4:0"}, out, err), kExitUsage);
+  EXPECT_NE(err.str().find("--stop 1:4:0: expected START:SECONDS in seconds of data"),
+            std::string::npos)
+      << err.str();
+  err.str("");
   EXPECT_EQ(RunCli({"aavio", "simulate", "--out", "x", "--fast", "1:0.5:50"}, out, err),
             kExitError);
   EXPECT_NE(err.str().find("disturbances.factor = 50 must be in [1, 20]"), std::string::npos)

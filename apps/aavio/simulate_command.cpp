@@ -49,6 +49,9 @@ constexpr DisturbanceOption kDisturbanceOptions[] = {
     {"--fast", sim::Disturbance::Kind::kFastMotion,
      "The camera moves up to FACTOR (default 4) times faster for SECONDS from START, speeding "
      "up and slowing down over a quarter of it each (repeatable)"},
+    {"--stop", sim::Disturbance::Kind::kStop,
+     "The camera slows to a standstill over the first quarter of SECONDS from START, stands "
+     "still for half of it and starts again (a car at a red light; repeatable)"},
 };
 
 // "START:SECONDS", or for fast motion "START:SECONDS[:FACTOR]", in seconds of data.

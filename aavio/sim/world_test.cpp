@@ -1,0 +1,64 @@
+#include "aavio/sim/world.hpp"
+
+#include <gtest/gtest.h>
+
+namespace aavio::sim {
+namespace {
+
+SimulationWorld World(std::vector<Disturbance> disturbances) {
+  SimulationRequest request;
+  request.preset = "mini";
+  request.duration_s = 3.0;
+  request.sensor = "ideal";
+  request.disturbances = std::move(disturbances);
+  Expected<SimulationWorld> world = BuildSimulationWorld(request);
+  EXPECT_TRUE(world.ok()) << world.status().message();
+  return std::move(*world);
+}
+
+TimeNs At(const SimulationWorld& w, double t_s) {
+  return w.spline.t_begin_ns() + SecondsToNs(t_s);
+}
+
+TEST(SimulationWorld, AStopBrakesStandsStillAndDrivesOn) {
+  const SimulationWorld plain = World({});
+  // Stop over 1–2 s: braking 1–1.25 s, standing 1.25–1.75 s, starting 1.75–2 s.
+  const SimulationWorld stop = World({{Disturbance::Kind::kStop, 1.0, 1.0}});
+  // Same length of data, the same motion before the stretch.
+  EXPECT_NEAR(NsToSeconds(stop.spline.t_end_ns() - stop.spline.t_begin_ns()),
+              NsToSeconds(plain.spline.t_end_ns() - plain.spline.t_begin_ns()), 0.01);
+  for (double t : {0.2, 0.5, 0.8}) {
+    EXPECT_LT((stop.spline.Position(At(stop, t)) - plain.spline.Position(At(plain, t))).norm(),
+              1e-3)
+        << t;
+  }
+  const double cruise = plain.spline.LinearVelocity(At(plain, 1.0)).norm();
+  ASSERT_GT(cruise, 0.1);
+  // Standing: no speed, no turn, one place.
+  const Eigen::Vector3d parked = stop.spline.Position(At(stop, 1.3));
+  for (double t = 1.3; t <= 1.7; t += 0.05) {
+    EXPECT_LT(stop.spline.LinearVelocity(At(stop, t)).norm(), 0.02 * cruise) << t;
+    EXPECT_LT(stop.spline.AngularVelocity(At(stop, t)).norm(), 0.02) << t;
+    EXPECT_LT((stop.spline.Position(At(stop, t)) - parked).norm(), 1e-3) << t;
+  }
+  // Braking slows it down smoothly: half the speed halfway through the ramp, give or take.
+  const double braking = stop.spline.LinearVelocity(At(stop, 1.125)).norm();
+  const double plain_there = plain.spline.LinearVelocity(At(plain, 1.0625)).norm();
+  EXPECT_GT(braking, 0.2 * plain_there);
+  EXPECT_LT(braking, 0.8 * plain_there);
+  // And it drives on: 1 s after the stretch it moves as the plain motion 0.25 s later in its
+  // path (the stretch covered a quarter of its length in motion).
+  EXPECT_NEAR(stop.spline.LinearVelocity(At(stop, 2.5)).norm(),
+              plain.spline.LinearVelocity(At(plain, 1.75)).norm(), 0.05 * cruise);
+}
+
+TEST(SimulationWorld, DarkAndCameraOffStretchesLeaveTheMotionAlone) {
+  const SimulationWorld plain = World({});
+  const SimulationWorld dark =
+      World({{Disturbance::Kind::kDark, 1.0, 0.5}, {Disturbance::Kind::kRightOff, 2.0, 0.5}});
+  for (double t : {0.5, 1.2, 2.2, 2.9})
+    EXPECT_EQ(dark.spline.Position(At(dark, t)), plain.spline.Position(At(plain, t))) << t;
+}
+
+}  // namespace
+}  // namespace aavio::sim
