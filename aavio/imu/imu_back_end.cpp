@@ -28,8 +28,16 @@ constexpr double kMaxGravityError = 1.0;  // m/s², of the first, unconstrained 
 // it was integrated with (its first-order correction would be off).
 constexpr double kReintegrateGyro = 0.005, kReintegrateAccel = 0.05;
 // At rest: moving slower than this by the estimate (an IMU cannot tell a steady motion from
-// rest), every gyroscope reading within this of the bias, every accelerometer axis steady.
-constexpr double kRestSpeed = 0.1, kRestGyroRadS = 0.03, kRestAccelStd = 0.15;
+// rest; the estimate carried through a braking keeps a few tenths of a m/s of its error), and
+// over the last kRestSpanS the mean rate within this of the gyroscope's bias (whose estimate may
+// be 0.02 rad/s off after a few seconds of driving straight), every
+// accelerometer axis steady and the mean reading gravity alone (not braking). Over 0.2 s, not a
+// tick: ten readings' spread is too noisy a test.
+constexpr double kRestSpeed = 0.5, kRestGyroRadS = 0.03, kRestAccelStd = 0.15,
+                 kRestAccelMeanMs2 = 0.3, kRestSpanS = 0.2;
+// The window: tracked poses every 50 ms over the last 2 s (on the rpg twins, 1 or 4 s and 25 or
+// 100 ms bridged a dark second worse, and tracked no better).
+constexpr double kWindowS = 2.0, kFrameIntervalS = 0.05;
 constexpr int kMinFrames = 8;
 constexpr double kLongTermS = 20.0;  // the biases' and gravity's memory [s]
 constexpr double kGravity = 9.81;    // m/s²
@@ -75,6 +83,7 @@ void ImuBackEnd::AddSamples(std::span<const ImuSample> samples) {
   TimeNs keep_from = have_last_ ? last_t_ns_ : (samples_.empty() ? 0 : samples_.back().t_ns);
   if (!frames_.empty()) keep_from = std::min(keep_from, frames_.front().t_ns);
   keep_from -= 20 * kNsPerMs;
+  if (have_last_) keep_from = std::min(keep_from, last_t_ns_ - SecondsToNs(kRestSpanS));
   const auto first = std::find_if(samples_.begin(), samples_.end(),
                                   [&](const ImuSample& s) { return s.t_ns >= keep_from; });
   // One sample at or before keep_from stays (pre-integration needs a sample before its start).
@@ -100,8 +109,7 @@ void ImuBackEnd::AddPose(TimeNs t_ns, const geometry::RigidTransform& T_world_ca
       ready_ = false;  // no IMU over the gap: the velocity is unknown
     }
   }
-  if (tracked &&
-      (frames_.empty() || t_ns - frames_.back().t_ns >= SecondsToNs(config_.frame_interval_s))) {
+  if (tracked && (frames_.empty() || t_ns - frames_.back().t_ns >= SecondsToNs(kFrameIntervalS))) {
     Frame frame{t_ns, T_world_imu.R, T_world_imu.t, last_v_, {}, {}};
     bool linked = true;
     if (!frames_.empty()) {
@@ -122,8 +130,7 @@ void ImuBackEnd::AddPose(TimeNs t_ns, const geometry::RigidTransform& T_world_ca
       ready_ = false;
     }
     frames_.push_back(std::move(frame));
-    while (frames_.size() > 2 &&
-           frames_.back().t_ns - frames_[1].t_ns >= SecondsToNs(config_.window_s)) {
+    while (frames_.size() > 2 && frames_.back().t_ns - frames_[1].t_ns >= SecondsToNs(kWindowS)) {
       frames_.pop_front();
     }
     Solve();
@@ -157,10 +164,8 @@ void ImuBackEnd::Solve() {
   // the long-term one, a running mean at first, then exponentially over kLongTermS.
   // Until the window is half full its estimates are too weak to pool: they replace it.
   LongTerm& lt = long_term_;
-  const bool half_full =
-      NsToSeconds(frames_.back().t_ns - frames_.front().t_ns) >= 0.5 * config_.window_s;
-  const double gain =
-      half_full ? std::max(1.0 / ++lt.solves, config_.frame_interval_s / kLongTermS) : 1.0;
+  const bool half_full = NsToSeconds(frames_.back().t_ns - frames_.front().t_ns) >= 0.5 * kWindowS;
+  const double gain = half_full ? std::max(1.0 / ++lt.solves, kFrameIntervalS / kLongTermS) : 1.0;
   if (lt.solves <= 1) lt.gravity_world = state_.gravity_world;
   lt.gyro_bias += gain * (state_.gyro_bias - lt.gyro_bias);
   lt.accel_bias += gain * (state_.accel_bias - lt.accel_bias);
@@ -342,19 +347,25 @@ Expected<geometry::RigidTransform> ImuBackEnd::Predict(TimeNs t_ns) const {
 
 bool ImuBackEnd::AtRest(TimeNs t_begin_ns, TimeNs t_end_ns) const {
   if (!ready_ || last_v_.norm() > kRestSpeed) return false;
+  t_begin_ns = std::min(t_begin_ns, t_end_ns - SecondsToNs(kRestSpanS));
   int n = 0;
+  Eigen::Vector3d gyro = Eigen::Vector3d::Zero();
   Eigen::Vector3d sum = Eigen::Vector3d::Zero(), sum2 = Eigen::Vector3d::Zero();
-  for (const ImuSample& s : samples_) {
-    if (s.t_ns < t_begin_ns || s.t_ns > t_end_ns) continue;
-    if ((s.gyro_rad_s - state_.gyro_bias).norm() > kRestGyroRadS) return false;
-    sum += s.accel_m_s2;
-    sum2 += s.accel_m_s2.cwiseProduct(s.accel_m_s2);
+  const auto first =
+      std::lower_bound(samples_.begin(), samples_.end(), t_begin_ns,
+                       [](const ImuSample& s, TimeNs t_ns) { return s.t_ns < t_ns; });
+  for (auto it = first; it != samples_.end() && it->t_ns <= t_end_ns; ++it) {
+    gyro += it->gyro_rad_s;
+    sum += it->accel_m_s2;
+    sum2 += it->accel_m_s2.cwiseProduct(it->accel_m_s2);
     ++n;
   }
   if (n < 2) return false;
   const Eigen::Vector3d mean = sum / n;
   const Eigen::Vector3d var = sum2 / n - mean.cwiseProduct(mean);
-  return var.maxCoeff() < kRestAccelStd * kRestAccelStd;
+  return (gyro / n - state_.gyro_bias).norm() < kRestGyroRadS &&
+         var.maxCoeff() < kRestAccelStd * kRestAccelStd &&
+         std::abs((mean - state_.accel_bias).norm() - kGravity) < kRestAccelMeanMs2;
 }
 
 }  // namespace aavio::imu

@@ -52,8 +52,8 @@ class ImuBackEnd {
   void AddSamples(std::span<const ImuSample> samples);
 
   /// A pose of the camera at `t_ns`: `tracked` = registered on events (a measurement for the
-  /// window), else carried by prediction. Every frame_interval_s of tracked poses becomes a window
-  /// frame, and the window is solved again.
+  /// window), else carried by prediction. Every 50 ms of tracked poses becomes a frame of the
+  /// window (2 s), and the window is solved again.
   void AddPose(TimeNs t_ns, const geometry::RigidTransform& T_world_cam, bool tracked);
 
   /// Forgets the window and the velocity (a re-initialisation or a jump of the pose): estimation
@@ -70,9 +70,9 @@ class ImuBackEnd {
   /// covering [last pose, t_ns].
   Expected<geometry::RigidTransform> Predict(TimeNs t_ns) const;
 
-  /// A standstill over [t_begin, t_end]: the estimated speed is low (under 0.1 m/s) and the
-  /// readings are those of a sensor at rest (gyroscope and accelerometer steady). Poses carried
-  /// through one keep a zero velocity.
+  /// A standstill at t_end: the estimated speed is low (under 0.5 m/s) and the readings since
+  /// t_begin, and over 0.2 s at least, are those of a sensor at rest (no rotation, gravity alone
+  /// and steady). Poses carried through one keep a zero velocity.
   bool AtRest(TimeNs t_begin_ns, TimeNs t_end_ns) const;
 
  private:

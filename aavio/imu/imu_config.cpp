@@ -16,14 +16,9 @@ Status ImuConfig::Validate() const {
       .InRange("online_window", online_window, 2, 100000)
       .InRange("online_max_rate_rad_s", online_max_rate_rad_s, 1e-6, 1.0)
       .InRange("online_gain", online_gain, 1e-4, 1.0)
-      .InRange("window_s", window_s, 0.2, 60.0)
-      .InRange("frame_interval_s", frame_interval_s, 0.005, 1.0)
       .InRange("gyro_noise_density", gyro_noise_density, 1e-7, 1.0)
       .InRange("accel_noise_density", accel_noise_density, 1e-6, 10.0)
       .InRange("max_bridge_s", max_bridge_s, 0.0, 600.0);
-  check.Require(window_s >= 8 * frame_interval_s, "window_s",
-                "must hold at least 8 frames of frame_interval_s (" +
-                    FieldChecker::Num(frame_interval_s) + " s)");
   return check.status();
 }
 

@@ -36,8 +36,6 @@ struct ImuConfig {
   double online_max_rate_rad_s = 0.05;
   double online_gain = 0.2;  ///< online: weight of a new window's estimate once warmed up
   // full mode: the back-end.
-  double window_s = 2.0;                ///< span of tracked poses it estimates over [s]
-  double frame_interval_s = 0.05;       ///< one window frame per this much data time [s]
   double gyro_noise_density = 0.00292;  ///< rad/s/√Hz (Kalibr's gyroscope_noise_density)
   double accel_noise_density = 0.044;   ///< m/s²/√Hz (Kalibr's accelerometer_noise_density)
   /// The longest stretch without events carried on the IMU alone before tracking is lost
@@ -56,8 +54,6 @@ struct ImuConfig {
     v("online_max_rate_rad_s", online_max_rate_rad_s,
       "online: a re-estimate further than this is refused [rad/s]");
     v("online_gain", online_gain, "online: weight of a new estimate");
-    v("window_s", window_s, "full: span of tracked poses the back-end estimates over [s]");
-    v("frame_interval_s", frame_interval_s, "full: one back-end frame per this much time [s]");
     v("gyro_noise_density", gyro_noise_density,
       "full: gyroscope white noise [rad/s/sqrt(Hz)] (Kalibr's gyroscope_noise_density)");
     v("accel_noise_density", accel_noise_density,

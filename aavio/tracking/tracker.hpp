@@ -95,7 +95,7 @@ class Tracker {
   Eigen::Matrix3d R_imu_cam_;
   std::optional<imu::GyroBiasEstimator> bias_;
   std::optional<imu::ImuBackEnd> back_end_;  ///< imu.mode full
-  TimeNs last_tracked_ns_ = 0;               ///< the last registered tick (IMU-only bridging)
+  TimeNs last_tracked_ns_ = 0;               ///< the last registered (or standing) tick: bridging
   std::uint64_t seed_;
   std::shared_ptr<const TrackingMap> map_;
   TimeNs t_prev_ = 0;

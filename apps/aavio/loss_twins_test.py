@@ -110,7 +110,7 @@ check(s['status'].get('imu', 0) >= 40 and s['reinitialisations'] == 0,
       'dark, imu.mode full: the stretch is carried on the IMU, no re-initialisation')
 check(len(s['imu_only']) == 1 and abs(s['imu_only'][0][0] - START) < 0.05 and
       abs(s['imu_only'][0][1] - END) < 0.02, 'dark, imu.mode full: summary.json lists the stretch')
-check('carried on the IMU alone (no events): 1.2' in full['printed'],
+check('carried on the IMU alone (events missing or not registering): 1.2' in full['printed'],
       'dark, imu.mode full: the run says so')
 check(full['ok_after'] >= 0.9, 'dark, imu.mode full: tracking resumes')
 check(full['jump_m'] < 0.03, 'dark, imu.mode full: the trajectory stays continuous')

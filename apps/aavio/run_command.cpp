@@ -118,7 +118,7 @@ void PrintOdometryRun(const recording::RunRecord& r, Context& ctx) {
     ctx.out << line << "\n";
   }
   if (!s["imu_only"].empty()) {
-    std::string line = "carried on the IMU alone (no events):";
+    std::string line = "carried on the IMU alone (events missing or not registering):";
     for (const nlohmann::json& stretch : s["imu_only"])
       line += StrFormat(" %.2f-%.2f s", stretch[0].get<double>(), stretch[1].get<double>());
     ctx.out << line << "\n";
