@@ -1,0 +1,271 @@
+// `aavio run`: mapping with ground-truth poses, tracking on ground-truth maps, the bootstrap
+// and the full odometry's outputs and determinism.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "aavio/common/format.hpp"
+#include "cli.hpp"
+#include "cli_test_util.hpp"
+#include "tests/event_fixtures.hpp"
+#include "tests/fixtures/calibrations.hpp"
+#include "tests/test_utils.hpp"
+
+namespace aavio::cli {
+namespace {
+
+using testing_cli::Result;
+using testing_cli::RunAavio;
+
+TEST(Cli, RunMapsWithGroundTruthPosesAndScoresDepth) {
+  const auto dir = testing::ScratchDir();
+  const std::string seq = (dir / "seq").string(), out = (dir / "run").string();
+  // The ideal sensor: the sample ceiling bounds the map only when the calibration is the truth
+  // (with the typical sensor, the map is made with the erroneous calibration it is handed).
+  Result r = RunAavio({"simulate", "--preset", "mini", "--duration", "1.5", "--out", seq,
+                       "--sensor", "ideal", "--quiet"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  r = RunAavio({"run", seq, "--gt-poses", "--out", out, "--preset", "indoor", "--quiet", "--set",
+                "mapping.bootstrap.min_points=100"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  EXPECT_NE(r.out.find("depth ("), std::string::npos) << r.out;
+  std::ifstream in(std::filesystem::path(out) / "summary.json");
+  const nlohmann::json j = nlohmann::json::parse(in);
+  EXPECT_GT(j["mapping_cycles"].get<int>(), 10);  // 1.5 s at the preset's 10 Hz
+  EXPECT_GT(j["depth"]["points"].get<int>(), 1000);
+  EXPECT_LT(j["depth"]["relative_median"].get<double>(), 0.1);  // a real map, not noise
+  // The samples at their true depth cover at least what the map does, and not everything.
+  const nlohmann::json& ceiling = j["depth"]["sample_ceiling"];
+  for (const char* key : {"completeness", "completeness_near_horizontal", "block_coverage"}) {
+    EXPECT_GE(ceiling[key].get<double>(), j["depth"][key].get<double>()) << key;
+    EXPECT_LT(ceiling[key].get<double>(), 1.0) << key;
+  }
+  EXPECT_NE(r.out.find("edge samples at their true depth would cover"), std::string::npos);
+  for (const char* stage : {"time_surface", "aa_map", "sampling", "matching", "depth_refinement",
+                            "fusion", "mapping_total"}) {
+    EXPECT_TRUE(j["stages"].contains(stage)) << stage;
+  }
+  EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(out) / "config.yaml"));
+  EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(out) / "map.ply"));
+  // `aavio eval --run` scores the maps the run wrote to depth/ (it has no trajectory of its own).
+  r = RunAavio({"eval", "--run", out, "--json"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  const nlohmann::json e = nlohmann::json::parse(r.out);
+  EXPECT_FALSE(e.contains("ate_rmse_m"));
+  EXPECT_GT(e["depth"]["frames"].get<int>(), 0);
+  EXPECT_EQ(e["depth"]["frames"].get<int>(), j["depth_maps_written"].get<int>());
+  EXPECT_LT(e["depth"]["relative_median"].get<double>(), 0.1);
+  // Without --preset, mapping alone takes the sensor's settings and the preset the rig suggests,
+  // as the odometry does.
+  const std::string auto_out = (dir / "run_auto").string();
+  r = RunAavio(
+      {"run", seq, "--gt-poses", "--out", auto_out, "--set", "mapping.bootstrap.min_points=100"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  EXPECT_NE(r.err.find("no --preset given; using 'indoor' (baseline 0.15 m"), std::string::npos)
+      << r.err;
+  std::ifstream config(std::filesystem::path(auto_out) / "config.yaml");
+  std::ostringstream config_text;
+  config_text << config.rdbuf();
+  EXPECT_NE(config_text.str().find("from: the sensor's settings + preset indoor + --set"),
+            std::string::npos)
+      << config_text.str();
+  // A sequence without ground truth: the error names what is missing.
+  testing::WriteFile(dir / "seq" / "no_gt.yaml",
+                     "calibration: calibration\nevents:\n  left: events/left/events.h5\n  right: "
+                     "events/right/events.h5\n");
+  r = RunAavio({"run", (dir / "seq" / "no_gt.yaml").string(), "--gt-poses", "--out", out});
+  EXPECT_EQ(r.code, kExitError);
+  EXPECT_NE(r.err.find("names no ground_truth.trajectory"), std::string::npos) << r.err;
+}
+
+TEST(Cli, RunTracksAgainstGroundTruthMaps) {
+  const auto dir = testing::ScratchDir();
+  const std::string seq = (dir / "seq").string(), out = (dir / "track").string();
+  Result r =
+      RunAavio({"simulate", "--preset", "mini", "--duration", "1.0", "--out", seq, "--quiet"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  // 160×120 px constrains translation weakly: the indoor preset's 5 cm divergence gate (for
+  // 240×180) would count half of these ticks as lost; this test is about the mode.
+  r = RunAavio({"run", seq, "--gt-map", "--out", out, "--preset", "indoor", "--quiet", "--set",
+                "tracking.max_correction_m=0.3"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  EXPECT_NE(r.out.find("RPE over 100 ms"), std::string::npos) << r.out;
+  std::ifstream in(std::filesystem::path(out) / "summary.json");
+  const nlohmann::json j = nlohmann::json::parse(in);
+  EXPECT_GT(j["poses"].get<int>(), 90);
+  EXPECT_GT(j["status"]["ok"].get<int>(), 80);
+  // The mini motion turns 4.0° and moves 2.6 cm per 100 ms (RMS); tracking at 160×120 px
+  // (0.43° per pixel) follows the rotation to a fraction of that (measured 0.53°, 2.7 cm).
+  EXPECT_LT(j["rpe_100ms"]["rotation_deg_rmse"].get<double>(), 1.0);
+  EXPECT_LT(j["rpe_100ms"]["translation_m_rmse"].get<double>(), 0.04);
+  EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(out) / "stamped_traj_estimate.txt"));
+  // `aavio eval --run` works on this kind of run folder too.
+  r = RunAavio({"eval", "--run", out, "--json"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  EXPECT_GT(nlohmann::json::parse(r.out)["pairs"].get<int>(), 90);
+}
+
+std::string ReadAll(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string text, line;
+  while (std::getline(in, line))
+    text += line + "\n";
+  return text;
+}
+
+// The full odometry: its outputs, no NaN pose, and the same trajectory bit for bit with one and
+// with two threads.
+// Starting at rest: no map is made of the still camera's noise, the bootstrap retries every
+// tick and says why, and the first map comes within 0.5 s of the motion's start.
+TEST(Cli, RunBootstrapsWhenTheCameraStartsMoving) {
+  const auto dir = testing::ScratchDir();
+  // A camera path (TUM, the camera's own frame): 0.6 s still, then 0.3 m/s sideways while
+  // turning at 0.4 rad/s.
+  std::string path = "# t tx ty tz qx qy qz qw\n";
+  for (int i = 0; i <= 400; ++i) {
+    const double t = i / 200.0, moving = std::max(0.0, t - 0.6), yaw = 0.4 * moving;
+    path += StrFormat("%.6f %.6f 0 0 0 %.6f 0 %.6f\n", 100.0 + t, 0.3 * moving, std::sin(yaw / 2),
+                      std::cos(yaw / 2));
+  }
+  const std::string trajectory = testing::WriteFile(dir / "rest_then_move.txt", path);
+  const std::string seq = (dir / "seq").string(), out = (dir / "run").string();
+  Result r = RunAavio({"simulate", "--preset", "mini", "--trajectory", trajectory,
+                       "--body-to-camera", "identity", "--duration", "2", "--out", seq, "--quiet"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  r = RunAavio({"run", seq, "--out", out, "--quiet"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  EXPECT_NE(r.out.find("found too few points and tried again"), std::string::npos) << r.out;
+  std::ifstream in(std::filesystem::path(out) / "summary.json");
+  const nlohmann::json j = nlohmann::json::parse(in);
+  ASSERT_TRUE(j["first_bootstrap_s"].is_number()) << j.dump();
+  EXPECT_GE(j["first_bootstrap_s"].get<double>(), 0.55);  // nothing while still (measured 0.60)
+  EXPECT_LE(j["first_bootstrap_s"].get<double>(), 1.1);
+  EXPECT_GT(j["bootstrap_failures"]["ticks"].get<int>(), 0);
+  EXPECT_NE(j["bootstrap_failures"]["last_reason"].get<std::string>().find("min_points"),
+            std::string::npos);
+  // From the first map on, tracked (measured 139 of the 140 ticks after it, none lost).
+  EXPECT_GE(j["status"]["ok"].get<int>(), 120) << j["status"].dump();
+  EXPECT_EQ(j["reinitialisations"].get<int>(), 0);
+}
+
+TEST(Cli, RunOdometryWritesItsOutputsAndIsDeterministic) {
+  const auto dir = testing::ScratchDir();
+  const std::string seq = (dir / "seq").string();
+  Result r =
+      RunAavio({"simulate", "--preset", "mini", "--duration", "1.5", "--out", seq, "--quiet"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  const std::string one = (dir / "t1").string(), two = (dir / "t2").string();
+  r = RunAavio({"run", seq, "--out", one, "--quiet", "--set", "pipeline.num_threads=1"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  EXPECT_NE(r.out.find("accuracy vs ground truth"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("real-time factor"), std::string::npos) << r.out;
+  r = RunAavio({"run", seq, "--out", two, "--quiet", "--set", "pipeline.num_threads=2"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  const std::string traj = ReadAll(std::filesystem::path(one) / "stamped_traj_estimate.txt");
+  EXPECT_EQ(traj, ReadAll(std::filesystem::path(two) / "stamped_traj_estimate.txt"));
+  EXPECT_EQ(traj.find("nan"), std::string::npos);
+  for (const char* name : {"summary.json", "timings.csv", "config.yaml", "map.ply"})
+    EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(one) / name)) << name;
+  for (const char* name :
+       {"depth/timestamps.txt", "depth/disparity_000000.png", "depth/inverse_depth_000000.png"})
+    EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(one) / name)) << name;
+  std::ifstream in(std::filesystem::path(one) / "summary.json");
+  const nlohmann::json j = nlohmann::json::parse(in);
+  EXPECT_EQ(j["mode"], "full");
+  EXPECT_GE(j["poses"].get<int>(), 140);
+  EXPECT_GT(j["status"]["ok"].get<int>(), 0);
+  EXPECT_GE(j["bootstraps"].get<int>(), 1);
+  // The mini twin moves from its first tick: the first map comes on the first mapping tick.
+  ASSERT_TRUE(j["first_bootstrap_s"].is_number()) << j["first_bootstrap_s"];
+  EXPECT_LT(j["first_bootstrap_s"].get<double>(), 0.5);
+  for (const char* stage : {"event_reading", "event_insertion", "time_surface", "tracking",
+                            "matching", "mapping_total"}) {
+    EXPECT_TRUE(j["stages"].contains(stage)) << stage;
+    EXPECT_GT(j["stages"][stage]["total_s"].get<double>(), 0.0) << stage;
+  }
+  EXPECT_GT(j["accuracy"]["pairs"].get<int>(), 100);
+  EXPECT_GT(j["peak_rss_mb"].get<double>(), 0.0);
+  EXPECT_GT(j["depth"]["points"].get<int>(), 0);
+  // Per mapping cycle: what each kind of stereo matched, and where temporal candidates were lost
+  // (their outcomes add up to the candidates).
+  const nlohmann::json& per_cycle = j["mapping_per_cycle"];
+  EXPECT_GT(j["mapping_cycles"].get<int>(), 10);
+  EXPECT_GT(per_cycle["static_matches"].get<double>(), 0.0);
+  EXPECT_GT(per_cycle["temporal_candidates"].get<double>(), 0.0);
+  double outcomes = per_cycle["temporal_matches"].get<double>();
+  for (const char* lost : {"temporal_no_segment", "temporal_no_match", "temporal_ill_conditioned",
+                           "temporal_check_rejected", "temporal_out_of_range"})
+    outcomes += per_cycle[lost].get<double>();
+  EXPECT_NEAR(outcomes, per_cycle["temporal_candidates"].get<double>(), 1e-9);
+  // Mapping inside each tick (no concurrent cycle): maps one tick earlier, so a different but
+  // equally valid trajectory.
+  r = RunAavio({"run", seq, "--out", two, "--quiet", "--overwrite", "--set",
+                "pipeline.concurrent_mapping=false"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  const std::string inline_traj = ReadAll(std::filesystem::path(two) / "stamped_traj_estimate.txt");
+  EXPECT_EQ(inline_traj.find("nan"), std::string::npos);
+  EXPECT_EQ(std::count(inline_traj.begin(), inline_traj.end(), '\n'),
+            std::count(traj.begin(), traj.end(), '\n'));
+  // ESVO-like mode: its configuration is the one that ran.
+  r = RunAavio({"run", seq, "--out", two, "--quiet", "--overwrite", "--esvo"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  const std::string config = ReadAll(std::filesystem::path(two) / "config.yaml");
+  EXPECT_NE(config.find("mode: newest_events"), std::string::npos);
+  EXPECT_NE(config.find("\n  mode: off\n"), std::string::npos);
+
+  // `aavio eval --run` recomputes what the run reported, and scores its depth maps.
+  r = RunAavio({"eval", "--run", one, "--json"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  const nlohmann::json e = nlohmann::json::parse(r.out);
+  for (const char* key : {"ate_rmse_m", "ate_mean_m", "ate_median_m", "ate_max_m", "pairs",
+                          "path_length_m", "align", "rpe_trans_pct", "rpe_rot_deg_per_m", "rpe"})
+    EXPECT_TRUE(e.contains(key)) << key;
+  // (the run's trajectory file holds 9 decimals)
+  EXPECT_NEAR(e["ate_rmse_m"].get<double>(), j["accuracy"]["ate_rmse_m"].get<double>(), 1e-7);
+  EXPECT_EQ(e["rpe"].size(), 5u);
+  EXPECT_DOUBLE_EQ(e["depth"]["relative"].get<double>(), j["depth"]["relative"].get<double>());
+  EXPECT_LT(e["depth"]["relative"].get<double>(), 0.5);
+  r = RunAavio({"eval", "--run", one});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  EXPECT_NE(r.out.find("rpg_trajectory_evaluation form"), std::string::npos) << r.out;
+
+  // `aavio report` of the two runs on one page: html with the plots embedded, non-empty PNGs.
+  const std::string html = (dir / "report" / "report.html").string();
+  r = RunAavio(
+      {"report", "--run", one, "--run", two, "--name", "full", "--name", "esvo", "--out", html});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  const std::string page = ReadAll(html);
+  EXPECT_NE(page.find("data:image/png;base64,"), std::string::npos);
+  EXPECT_NE(page.find("esvo"), std::string::npos);
+  EXPECT_NE(page.find("over the time surface"), std::string::npos);
+  // timings.csv counts each tick's events (the strips' event rate).
+  EXPECT_NE(ReadAll(std::filesystem::path(one) / "timings.csv").find(",lost_reason,events\n"),
+            std::string::npos);
+  for (const char* png : {"trajectory.png", "errors_over_distance.png", "depth_error.png",
+                          "timing.png", "depth_maps.png", "map_from_above.png", "strips.png"}) {
+    const auto path = dir / "report" / "report_files" / png;
+    ASSERT_TRUE(std::filesystem::exists(path)) << png;
+    EXPECT_GT(std::filesystem::file_size(path), 5000u) << png;
+  }
+  // Real-time mode: mapping on its own thread; it runs, maps and tracks (not bit-reproducible).
+  const std::string rt = (dir / "rt").string();
+  r = RunAavio({"run", seq, "--out", rt, "--quiet", "--real-time"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  std::ifstream rt_in(std::filesystem::path(rt) / "summary.json");
+  const nlohmann::json rj = nlohmann::json::parse(rt_in);
+  EXPECT_TRUE(rj["real_time_mode"].get<bool>());
+  EXPECT_GT(rj["status"]["ok"].get<int>(), 0);
+  EXPECT_GT(rj["stages"]["mapping_total"]["calls"].get<int>(), 0);
+  EXPECT_EQ(ReadAll(std::filesystem::path(rt) / "stamped_traj_estimate.txt").find("nan"),
+            std::string::npos);
+  // Both isolation modes at once: a usage error.
+  r = RunAavio({"run", seq, "--out", two, "--gt-map", "--gt-poses"});
+  EXPECT_EQ(r.code, kExitUsage);
+}
+}  // namespace
+}  // namespace aavio::cli
