@@ -143,6 +143,10 @@ Expected<CameraPath> FollowedMotion(const SimulationRequest& request,
 Expected<CameraPath> BuildMotion(const SimulationRequest& request, const SimulationPreset& preset) {
   Expected<CameraPath> path = FollowedMotion(request, preset, ExtraMotionS(request.disturbances));
   if (path) WarpTime(request.disturbances, &path->poses);
+  if (path && path->poses.size() < 2) {
+    return InvalidArgument(
+        "disturbances: the stops leave no motion to follow; a stop must end within the sequence");
+  }
   return path;
 }
 
@@ -183,6 +187,12 @@ Status SimulationRequest::Validate() const {
     check.InRange("disturbances.duration_s", d.duration_s, 1e-3, kDay_s);
     if (d.kind == Disturbance::Kind::kFastMotion)
       check.InRange("disturbances.factor", d.factor, 1.0, 20.0);
+    if (d.kind == Disturbance::Kind::kStop && duration_s)
+      check.Require(d.start_s + d.duration_s <= *duration_s, "disturbances",
+                    "stop from " + FieldChecker::Num(d.start_s) + " s for " +
+                        FieldChecker::Num(d.duration_s) + " s ends after the sequence (" +
+                        FieldChecker::Num(*duration_s) +
+                        " s): a stop must end within it (lengthen --duration or shorten it)");
   }
   return check.status();
 }

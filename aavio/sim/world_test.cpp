@@ -52,6 +52,17 @@ TEST(SimulationWorld, AStopBrakesStandsStillAndDrivesOn) {
               plain.spline.LinearVelocity(At(plain, 1.75)).norm(), 0.05 * cruise);
 }
 
+TEST(SimulationWorld, AStopPastTheEndIsAClearError) {
+  SimulationRequest request;
+  request.preset = "mini";
+  request.duration_s = 1.0;
+  request.disturbances = {{Disturbance::Kind::kStop, 0.5, 4.0}};
+  const Status status = BuildSimulationWorld(request).status();
+  EXPECT_NE(status.message().find("stop from 0.5 s for 4 s ends after the sequence (1 s)"),
+            std::string::npos)
+      << status.message();
+}
+
 TEST(SimulationWorld, DarkAndCameraOffStretchesLeaveTheMotionAlone) {
   const SimulationWorld plain = World({});
   const SimulationWorld dark =
