@@ -19,6 +19,10 @@ Status ImuConfig::Validate() const {
       .InRange("gyro_noise_density", gyro_noise_density, 1e-7, 1.0)
       .InRange("accel_noise_density", accel_noise_density, 1e-6, 10.0)
       .InRange("max_bridge_s", max_bridge_s, 0.0, 600.0);
+  check.Require(std::abs(time_offset_s) <= 1.0, "time_offset_s",
+                "= " + FieldChecker::Num(time_offset_s) +
+                    " s; an IMU-camera time offset is a few milliseconds, given in seconds (is it "
+                    "in ms?)");
   return check.status();
 }
 

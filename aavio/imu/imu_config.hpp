@@ -41,6 +41,8 @@ struct ImuConfig {
   /// The longest stretch without events carried on the IMU alone before tracking is lost
   /// (a standstill the IMU sees as such has no limit) [s].
   double max_bridge_s = 2.0;
+  /// IMU clock minus camera clock: t_imu = t_cam + time_offset_s (Kalibr's timeshift_cam_imu).
+  double time_offset_s = 0.0;
 
   template <typename V>
   void VisitFields(V&& v) {
@@ -60,6 +62,8 @@ struct ImuConfig {
       "full: accelerometer white noise [m/s^2/sqrt(Hz)] (Kalibr's accelerometer_noise_density)");
     v("max_bridge_s", max_bridge_s,
       "full: longest stretch without events carried on the IMU alone (standstills excepted) [s]");
+    v("time_offset_s", time_offset_s,
+      "IMU clock minus camera clock [s] (Kalibr's timeshift_cam_imu: t_imu = t_cam + offset)");
   }
   Status Validate() const;
 };

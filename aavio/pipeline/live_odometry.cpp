@@ -201,7 +201,9 @@ Status LiveOdometry::Finish(std::optional<TimeNs> end_ns) {
   AAVIO_RETURN_IF_ERROR(error_);
   TimeNs end = std::max({events_watermark_ns_[0], events_watermark_ns_[1], imu_watermark_ns_}) + 1;
   if (end_ns) end = *end_ns;
-  return ProcessUpTo(end, lock);
+  AAVIO_RETURN_IF_ERROR(ProcessUpTo(end, lock));
+  lock.unlock();              // the ticks report to stats_ under the lock
+  return odometry_.Finish();  // ticks still waiting for IMU samples past the end
 }
 
 LiveStats LiveOdometry::stats() const {

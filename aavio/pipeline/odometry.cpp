@@ -8,6 +8,10 @@
 namespace aavio::pipeline {
 namespace {
 
+// A tick waits this long past its time (plus the IMU time offset) for the IMU sample that ends its
+// window; then it runs with what has arrived (no IMU stream, or a gap in it).
+constexpr TimeNs kMaxImuGapNs = 50 * kNsPerMs;
+
 tracking::Camera CameraOf(const geometry::StereoRig& rig) {
   return {rig.width(), rig.height(), rig.focal_px(), rig.cx_left(), rig.cy()};
 }
@@ -27,6 +31,8 @@ Odometry::Odometry(const geometry::StereoRig& rig, const OdometryConfig& config,
                rig.T_imu_rect_left().value_or(geometry::RigidTransform()),
                static_cast<std::uint64_t>(config.pipeline.random_seed)),
       mapper_(stereo_, rectification_.left.valid_mask, config.mapping),
+      imu_offset_ns_(SecondsToNs(config.imu.time_offset_s)),
+      last_t_end_ns_(start_ns),
       tick_ns_(SecondsToNs(1.0 / config.time_surface.rate_hz)),
       next_tick_ns_(start_ns + tick_ns_),
       last_tick_ns_(start_ns),
@@ -64,12 +70,33 @@ Status Odometry::Process(std::span<const events::Event> left, std::span<const ev
   last_insertion_ms_ =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   imu_.insert(imu_.end(), imu.begin(), imu.end());
+  last_t_end_ns_ = std::max(last_t_end_ns_, t_end_ns);
+  return RunTicks(policy, /*finishing=*/false);
+}
+
+Status Odometry::Finish() {
+  return RunTicks(TickPolicy::kEvery, /*finishing=*/true);
+}
+
+bool Odometry::ImuReady(TimeNs t_ns) const {
+  if (config_.imu.mode == imu::ImuMode::kOff) return true;
+  const TimeNs t_imu = t_ns + imu_offset_ns_;
+  if (t_imu + kMaxImuGapNs < last_t_end_ns_) return true;  // no IMU, or a gap in its stream
+  const auto first = std::lower_bound(imu_.begin(), imu_.end(), t_imu,
+                                      [](const imu::ImuSample& s, TimeNs t) { return s.t_ns < t; });
+  return first != imu_.end() && first->t_ns < last_t_end_ns_;
+}
+
+Status Odometry::RunTicks(TickPolicy policy, bool finishing) {
   int skipped = 0;
-  if (policy == TickPolicy::kLatest && next_tick_ns_ < t_end_ns) {
-    skipped = static_cast<int>((t_end_ns - 1 - next_tick_ns_) / tick_ns_);
-    next_tick_ns_ += skipped * tick_ns_;
+  if (policy == TickPolicy::kLatest) {
+    const TimeNs until = last_t_end_ns_ - std::max<TimeNs>(0, imu_offset_ns_);
+    if (next_tick_ns_ < until) {
+      skipped = static_cast<int>((until - 1 - next_tick_ns_) / tick_ns_);
+      next_tick_ns_ += skipped * tick_ns_;
+    }
   }
-  while (next_tick_ns_ < t_end_ns) {
+  while (next_tick_ns_ < last_t_end_ns_ && (finishing || ImuReady(next_tick_ns_))) {
     AAVIO_RETURN_IF_ERROR(Tick(next_tick_ns_, skipped));
     skipped = 0;
     last_tick_ns_ = next_tick_ns_;
@@ -87,6 +114,24 @@ void Odometry::PublishToTracking(const mapping::LocalMapPtr& map) {
   tracking_map->T_world_ref = map->T_world_ref;
   tracking_map->points_world = map->points_world;
   tracker_.SetMap(std::move(tracking_map));
+}
+
+// The IMU samples around (previous tick, t] in camera time: from the last at or before the
+// previous tick to the first at or after t, among those before the time all data is in up to
+// (others may have arrived: they are left for later ticks, so that the output does not depend
+// on how the input was split).
+std::vector<imu::ImuSample> Odometry::ImuWindow(TimeNs t_ns) {
+  const TimeNs offset = imu_offset_ns_;
+  while (imu_.size() > 2 && imu_[1].t_ns <= last_tick_ns_ + offset)
+    imu_.pop_front();
+  auto window_end = imu_.begin();
+  while (window_end != imu_.end() && window_end->t_ns < t_ns + offset)
+    ++window_end;
+  if (window_end != imu_.end() && window_end->t_ns < last_t_end_ns_) ++window_end;
+  std::vector<imu::ImuSample> window(imu_.begin(), window_end);
+  for (imu::ImuSample& s : window)
+    s.t_ns -= offset;
+  return window;
 }
 
 Status Odometry::Tick(TimeNs t_ns, int skipped_ticks) {
@@ -119,16 +164,7 @@ Status Odometry::Tick(TimeNs t_ns, int skipped_ticks) {
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   }
 
-  // The IMU samples around (previous tick, t]: from the last at or before the previous tick to
-  // the first at or after t — whatever else has arrived is left for later ticks, so the output
-  // does not depend on how the input was split.
-  while (imu_.size() > 2 && imu_[1].t_ns <= last_tick_ns_)
-    imu_.pop_front();
-  auto window_end = imu_.begin();
-  while (window_end != imu_.end() && window_end->t_ns < t_ns)
-    ++window_end;
-  if (window_end != imu_.end()) ++window_end;
-  const std::vector<imu::ImuSample> window(imu_.begin(), window_end);
+  const std::vector<imu::ImuSample> window = ImuWindow(t_ns);
   const tracking::TrackingResult tracked =
       tracker_.Track(*obs, rectification_.left.valid_mask, window);
   tick.T_world_cam = tracked.T_world_cur;

@@ -78,12 +78,16 @@ class Odometry {
   Odometry(const geometry::StereoRig& rig, const OdometryConfig& config, TimeNs start_ns,
            const geometry::RigidTransform& T_world_start = {}, bool run_mapping = true);
 
-  /// Adds both cameras' events and the IMU samples of [.., t_end_ns) (each time-ordered) and runs
-  /// the ticks due by then (all, or with kLatest the last); each goes to `on_tick`. How the data
-  /// is split into calls does not change the output.
+  /// Adds both cameras' events and the IMU samples of [.., t_end_ns) (each time-ordered; IMU
+  /// samples in the IMU's clock) and runs the ticks due by then (all, or with kLatest the last);
+  /// each goes to `on_tick`. A tick at t waits for the IMU sample at or after t + the IMU time
+  /// offset (up to 50 ms longer: then it runs without), until the next call or Finish. How the
+  /// data is split into calls does not change the output.
   Status Process(std::span<const events::Event> left, std::span<const events::Event> right,
                  std::span<const imu::ImuSample> imu, TimeNs t_end_ns,
                  TickPolicy policy = TickPolicy::kEvery);
+  /// End of input: runs the ticks before the last t_end_ns still waiting for IMU samples.
+  Status Finish();
   /// The time of the next tick due.
   TimeNs next_tick_ns() const { return next_tick_ns_; }
 
@@ -101,6 +105,12 @@ class Odometry {
 
  private:
   Status Tick(TimeNs t_ns, int skipped_ticks);
+  // Runs the ticks due (all, or with kLatest the last).
+  Status RunTicks(TickPolicy policy, bool finishing);
+  // The IMU samples the tick at t_ns needs are in: up to the first at or after t + offset.
+  bool ImuReady(TimeNs t_ns) const;
+  // The IMU samples of the tick at t_ns, in camera time.
+  std::vector<imu::ImuSample> ImuWindow(TimeNs t_ns);
   void PublishToTracking(const mapping::LocalMapPtr& map);
   // Concurrent and real-time modes: a mapping cycle on its own thread, and its result.
   struct CycleResult {
@@ -117,7 +127,9 @@ class Odometry {
   events::RepresentationBuilder builder_;
   tracking::Tracker tracker_;
   mapping::Mapper mapper_;
-  std::deque<imu::ImuSample> imu_;
+  std::deque<imu::ImuSample> imu_;  // IMU clock
+  TimeNs imu_offset_ns_;            // t_imu − t_cam
+  TimeNs last_t_end_ns_;            // all data is in up to here
   TimeNs tick_ns_, next_tick_ns_;
   TimeNs last_tick_ns_;   // the last tick run (the start before the first)
   TimeNs cycle_ns_;       // mapping period: a whole number of ticks

@@ -111,6 +111,7 @@ TEST(OdometryConfig, ValidationNamesTheFieldAndTheRule) {
       {"mapping.bootstrap.min_points", "0", "mapping.bootstrap.min_points = 0 must be in [1,"},
       {"tracking.batch_size", "5000", "tracking.batch_size must not exceed max_points (2000)"},
       {"imu.gyro_bias_rad_s", "[0, 5.7, 0]", "is it in deg/s?"},
+      {"imu.time_offset_s", "4.5", "imu.time_offset_s = 4.5 s; an IMU-camera time offset"},
       {"mapping.rate_hz", "200",
        "mapping.rate_hz = 200 must not exceed time_surface.rate_hz (100)"},
       {"mapping.max_points", "3000", "mapping.max_points = 3000 exceeds edge_sampling.num_points"},

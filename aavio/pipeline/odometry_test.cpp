@@ -31,25 +31,39 @@ OdometryConfig RpgPreset() {
   return config;
 }
 
-/// Every tick of the recording; the cameras see nothing in [blind_from_s, blind_to_s).
+/// Every tick of the recording; the cameras see nothing in [blind_from_s, blind_to_s); the IMU's
+/// stamps are `imu_late_ns` late (each packet gets the samples stamped before its end).
 std::vector<OdometryTick> RunMini(const OdometryConfig& config, double blind_from_s = -1.0,
-                                  double blind_to_s = -1.0) {
+                                  double blind_to_s = -1.0, TimeNs imu_late_ns = 0) {
   const aavio::testing::SimulatedSequence& r = Mini();
   if (!r.rig || r.packets.empty()) {
     ADD_FAILURE() << "the mini sequence could not be simulated or read";
     return {};
   }
+  std::vector<imu::ImuSample> imu;
+  for (const io::SensorPacket& p : r.packets)
+    for (imu::ImuSample s : p.imu) {
+      s.t_ns += imu_late_ns;
+      imu.push_back(s);
+    }
   Odometry odometry(*r.rig, config, r.start_ns);
   std::vector<OdometryTick> ticks;
   odometry.on_tick = [&](const OdometryTick& t) { ticks.push_back(t); };
   const std::vector<events::Event> none;
+  std::size_t next_imu = 0;
   for (const io::SensorPacket& p : r.packets) {
     const double t_s = NsToSeconds(p.t_begin_ns - r.start_ns);
     const bool blind = t_s >= blind_from_s && t_s < blind_to_s;
-    const Status s =
-        odometry.Process(blind ? none : p.left, blind ? none : p.right, p.imu, p.t_end_ns);
+    const std::size_t first_imu = next_imu;
+    while (next_imu < imu.size() && imu[next_imu].t_ns < p.t_end_ns)
+      ++next_imu;
+    const Status s = odometry.Process(
+        blind ? none : p.left, blind ? none : p.right,
+        std::span<const imu::ImuSample>(imu).subspan(first_imu, next_imu - first_imu), p.t_end_ns);
     EXPECT_TRUE(s.ok()) << s.message();
   }
+  const Status s = odometry.Finish();
+  EXPECT_TRUE(s.ok()) << s.message();
   return ticks;
 }
 
@@ -159,6 +173,28 @@ TEST(Odometry, TheSameTrajectoryBitForBitAtOneAndTwoThreads) {
     ASSERT_EQ(one[i].T_world_cam.t, two[i].T_world_cam.t) << "tick " << i;
     ASSERT_EQ(one[i].status, two[i].status) << "tick " << i;
   }
+}
+
+// An IMU whose stamps run 7 ms late, with imu.time_offset_s saying so: the trajectory of the
+// IMU on time, bit for bit (ticks wait for their samples). Not saying so changes it.
+TEST(Odometry, TheImuTimeOffsetUndoesALateImuClock) {
+  const TimeNs late_ns = 7 * kNsPerMs;
+  const std::vector<OdometryTick> on_time = RunMini(RpgPreset());
+  OdometryConfig config = RpgPreset();
+  config.imu.time_offset_s = NsToSeconds(late_ns);
+  const std::vector<OdometryTick> told = RunMini(config, -1.0, -1.0, late_ns);
+  const std::vector<OdometryTick> untold = RunMini(RpgPreset(), -1.0, -1.0, late_ns);
+  ASSERT_EQ(told.size(), on_time.size());
+  ASSERT_EQ(untold.size(), on_time.size());
+  // The last tick's window would need samples stamped past the recording's end.
+  int differ_untold = 0;
+  for (std::size_t i = 0; i + 1 < on_time.size(); ++i) {
+    ASSERT_EQ(told[i].t_ns, on_time[i].t_ns);
+    ASSERT_EQ(told[i].T_world_cam.R, on_time[i].T_world_cam.R) << "tick " << i;
+    ASSERT_EQ(told[i].T_world_cam.t, on_time[i].T_world_cam.t) << "tick " << i;
+    differ_untold += untold[i].T_world_cam.R != on_time[i].T_world_cam.R;
+  }
+  EXPECT_GT(differ_untold, static_cast<int>(on_time.size()) / 2);
 }
 
 }  // namespace

@@ -85,6 +85,7 @@ TEST(RunRecorder, OdometryRunWritesEverythingAndScoresDepthAsTheFilesScore) {
     (*recorder)->AddPacket(p.left.size() + p.right.size(), 0.1);
     end = p.t_end_ns;
   }
+  ASSERT_TRUE(odometry.Finish().ok());
   ASSERT_TRUE(tick_status.ok()) << tick_status.message();
   Expected<RunRecord> record = (*recorder)->Finish(false, end, {{"extra_key", 7}});
   ASSERT_TRUE(record.ok()) << record.status().message();

@@ -332,7 +332,7 @@ Expected<bool> Run(RunOptions options, Context& ctx) {
     }
   }
 
-  const Fed fed = FeedPackets(
+  Fed fed = FeedPackets(
       reader, begin, end, &recorder,
       [&](const io::SensorPacket& packet, TimeNs t_end) {
         Status status = Status::Ok();
@@ -346,6 +346,11 @@ Expected<bool> Run(RunOptions options, Context& ctx) {
         return status.ok() ? callback_status : status;
       },
       !options.quiet && isatty(STDERR_FILENO), ctx);
+  if (odometry && fed.stopped_by.ok()) {
+    // The ticks still waiting for IMU samples past the last packet (a positive time offset).
+    Status finished = odometry->Finish();
+    fed.stopped_by = finished.ok() ? callback_status : finished;
+  }
   odometry.reset();  // a mapping cycle still running finishes here
 
   // Stopped by an error (a full disk, a corrupt stretch of the input): what was done until then
