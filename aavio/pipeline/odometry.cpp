@@ -70,6 +70,7 @@ Status Odometry::Process(std::span<const events::Event> left, std::span<const ev
   last_insertion_ms_ =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   imu_.insert(imu_.end(), imu.begin(), imu.end());
+  imu_seen_ = imu_seen_ || !imu.empty();
   last_t_end_ns_ = std::max(last_t_end_ns_, t_end_ns);
   return RunTicks(policy, /*finishing=*/false);
 }
@@ -79,7 +80,8 @@ Status Odometry::Finish() {
 }
 
 bool Odometry::ImuReady(TimeNs t_ns) const {
-  if (config_.imu.mode == imu::ImuMode::kOff) return true;
+  // No IMU in use, or none in the input so far (a rig without one): nothing to wait for.
+  if (config_.imu.mode == imu::ImuMode::kOff || !imu_seen_) return true;
   const TimeNs t_imu = t_ns + imu_offset_ns_;
   if (t_imu + kMaxImuGapNs < last_t_end_ns_) return true;  // no IMU, or a gap in its stream
   const auto first = std::lower_bound(imu_.begin(), imu_.end(), t_imu,

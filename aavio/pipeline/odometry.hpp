@@ -80,8 +80,9 @@ class Odometry {
 
   /// Adds both cameras' events and the IMU samples of [.., t_end_ns) (each time-ordered; IMU
   /// samples in the IMU's clock) and runs the ticks due by then (all, or with kLatest the last);
-  /// each goes to `on_tick`. A tick at t waits for the IMU sample at or after t + the IMU time
-  /// offset (up to 50 ms longer: then it runs without), until the next call or Finish. How the
+  /// each goes to `on_tick`. Once IMU samples come in, a tick at t waits for the one at or after
+  /// t + the IMU time offset (up to 50 ms longer: then it runs without), until the next call or
+  /// Finish. How the
   /// data is split into calls does not change the output.
   Status Process(std::span<const events::Event> left, std::span<const events::Event> right,
                  std::span<const imu::ImuSample> imu, TimeNs t_end_ns,
@@ -130,6 +131,7 @@ class Odometry {
   std::deque<imu::ImuSample> imu_;  // IMU clock
   TimeNs imu_offset_ns_;            // t_imu − t_cam
   TimeNs last_t_end_ns_;            // all data is in up to here
+  bool imu_seen_ = false;           // any IMU sample in the input so far
   TimeNs tick_ns_, next_tick_ns_;
   TimeNs last_tick_ns_;   // the last tick run (the start before the first)
   TimeNs cycle_ns_;       // mapping period: a whole number of ticks

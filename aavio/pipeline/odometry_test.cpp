@@ -175,6 +175,23 @@ TEST(Odometry, TheSameTrajectoryBitForBitAtOneAndTwoThreads) {
   }
 }
 
+// A rig without an IMU (the gyroscope mode configured all the same): every tick runs in the call
+// that makes it due, none waits for IMU samples that never come.
+TEST(Odometry, WithoutAnImuNoTickWaits) {
+  const aavio::testing::SimulatedSequence& r = Mini();
+  ASSERT_TRUE(r.rig.has_value());
+  ASSERT_EQ(RpgPreset().imu.mode, imu::ImuMode::kGyro);
+  Odometry odometry(*r.rig, RpgPreset(), r.start_ns);
+  int ticks = 0;
+  odometry.on_tick = [&](const OdometryTick&) { ++ticks; };
+  for (std::size_t i = 0; i < 300 && i < r.packets.size(); ++i) {
+    const io::SensorPacket& p = r.packets[i];
+    ASSERT_TRUE(odometry.Process(p.left, p.right, {}, p.t_end_ns).ok());
+    EXPECT_GE(odometry.next_tick_ns(), p.t_end_ns) << "packet " << i;
+  }
+  EXPECT_GE(ticks, 29);
+}
+
 // An IMU whose stamps run 7 ms late, with imu.time_offset_s saying so: the trajectory of the
 // IMU on time, bit for bit (ticks wait for their samples). Not saying so changes it.
 TEST(Odometry, TheImuTimeOffsetUndoesALateImuClock) {
