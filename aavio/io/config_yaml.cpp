@@ -12,9 +12,13 @@ namespace {
 Status Flatten(const YAML::Node& node, const std::string& prefix, const std::string& origin,
                std::vector<ConfigEntry>* out) {
   for (const auto& item : node) {
-    const std::string key = prefix + item.first.as<std::string>();
-    const YAML::Node& value = item.second;
     const std::string where = yaml::Where(origin, item.first);
+    if (!item.first.IsScalar()) {
+      return ParseError(where +
+                        ": a key must be a name (e.g. max_iterations), not a list or a map");
+    }
+    const std::string key = prefix + item.first.Scalar();
+    const YAML::Node& value = item.second;
     if (value.IsMap()) {
       AAVIO_RETURN_IF_ERROR(Flatten(value, key + ".", origin, out));
     } else if (value.IsSequence()) {

@@ -53,6 +53,13 @@ TEST(ConfigYaml, UnknownKeysAndBadValuesNameFileAndLine) {
   EXPECT_NE(s.message().find("YAML syntax error"), std::string::npos);
   s = apply("imu:\n  gyro_bias_rad_s: [[1], 2, 3]\n");
   EXPECT_NE(s.message().find("must be a flat list"), std::string::npos);
+  // Keys that are not names, a file that is a list: errors, not exceptions.
+  s = apply("tracking:\n  [max_iterations]: 20\n");
+  EXPECT_NE(s.message().find("my.yaml:2: a key must be a name"), std::string::npos) << s.message();
+  s = apply("- tracking\n- mapping\n");
+  EXPECT_NE(s.message().find("my.yaml:1: expected a mapping of keys at the top level"),
+            std::string::npos)
+      << s.message();
 }
 
 TEST(ConfigYaml, WrittenConfigReadsBackIdentically) {

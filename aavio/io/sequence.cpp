@@ -61,7 +61,12 @@ Status CheckKeys(const YAML::Node& node, const std::set<std::string>& known,
                  const std::string& where, const std::string& section) {
   if (!node.IsMap()) return ParseError(where + ": " + section + " must be a mapping");
   for (const auto& item : node) {
-    const std::string key = item.first.as<std::string>();
+    if (!item.first.IsScalar()) {
+      return ParseError(yaml::Where(where, item.first) + ": a key" +
+                        (section.empty() ? "" : " under '" + section + "'") +
+                        " is a list or a map, not a name");
+    }
+    const std::string key = item.first.Scalar();
     if (!known.count(key)) {
       std::vector<std::string> list(known.begin(), known.end());
       const std::string hint = config_detail::DidYouMean(key, list);

@@ -157,6 +157,9 @@ TEST(Sequence, BadDescriptionsGiveClearErrors) {
       {"evnts:\n  left: a.h5\n", "unknown key 'evnts'; did you mean 'events'?"},
       {"events:\n  left: a.h5\n  right: b.h5\nimu:\n  path: imu.txt\n  layout: csv\n",
        "imu.layout 'csv' must be ecd or tum_vie"},
+      {"events:\n  [left]: a.h5\n  right: b.h5\n",
+       "sequence.yaml:2: a key under 'events.' is a list or a map, not a name"},
+      {"? {events: 1}\n: x\n", "a key is a list or a map, not a name"},
   };
   for (const Case& c : cases) {
     const auto dir = testing::ScratchDir();
