@@ -10,15 +10,15 @@ namespace aavio::config {
 
 namespace {
 
-// A shipped overlay, and what of it depends on the sensor (ESVO's event budget per dataset).
+// A shipped overlay, and what of it depends on the sensor (a reference's budget per dataset).
 Status ApplyOverlay(const std::string& name, const ConfigSources& sources,
                     pipeline::OdometryConfig* config) {
   Expected<std::vector<ConfigEntry>> entries = io::OverlayEntries(name);
   if (!entries) return entries.status();
   AAVIO_RETURN_IF_ERROR(ApplyConfigEntries(*entries, config));
-  if (name != "esvo" || !sources.sensor) return Status::Ok();
+  if (!sources.sensor) return Status::Ok();
   return ApplyConfigEntries(
-      pipeline::ToConfigEntries(pipeline::EsvoSensorSettings(*sources.sensor)), config);
+      pipeline::ToConfigEntries(pipeline::OverlaySensorSettings(name, *sources.sensor)), config);
 }
 
 // Applies the preset, the files, the overlays and the --set overrides onto `config`.

@@ -88,10 +88,19 @@ std::vector<SensorSetting> DeriveSensorSettings(const SensorFacts& sensor,
   return s;
 }
 
-std::vector<SensorSetting> EsvoSensorSettings(const SensorFacts& sensor) {
+std::vector<SensorSetting> OverlaySensorSettings(const std::string& overlay,
+                                                 const SensorFacts& sensor) {
   if (static_cast<long>(sensor.width_px) * sensor.height_px >= kSmallSensorPixels) return {};
-  const std::string rule = "ESVO on a sensor under 0.1 Mpx: its rpg budget of 1000 newest events";
-  return {{"edge_sampling.num_points", "1000", rule}, {"mapping.max_points", "1000", rule}};
+  if (overlay == "esvo") {
+    const std::string rule = "ESVO on a sensor under 0.1 Mpx: its rpg budget of 1000 newest events";
+    return {{"edge_sampling.num_points", "1000", rule}, {"mapping.max_points", "1000", rule}};
+  }
+  if (overlay == "paper") {
+    const std::string rule =
+        "the ICRA code on a sensor under 0.1 Mpx: its rpg budget of 5000 AA samples, 1000 mapped";
+    return {{"edge_sampling.num_points", "5000", rule}, {"mapping.max_points", "1000", rule}};
+  }
+  return {};
 }
 
 std::vector<ConfigEntry> ToConfigEntries(const std::vector<SensorSetting>& settings) {

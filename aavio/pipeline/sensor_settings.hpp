@@ -45,10 +45,13 @@ struct SensorSetting {
 std::vector<SensorSetting> DeriveSensorSettings(const SensorFacts& sensor,
                                                 const OdometryConfig& scene);
 
-/// ESVO's settings that depend on the sensor, applied after the esvo overlay (`aavio run --esvo`):
-/// its configurations take the newest 1 000 events on rpg's DAVIS240C (under 0.1 Mpx) and
-/// 10 000 on DSEC's 640×480 (the overlay's value; nothing to add there).
-std::vector<SensorSetting> EsvoSensorSettings(const SensorFacts& sensor);
+/// The reference settings that depend on the sensor, applied after a shipped overlay of a reference
+/// configuration: `esvo` (`aavio run --esvo`) takes ESVO's newest 1 000 events on rpg's DAVIS240C
+/// (under 0.1 Mpx; 10 000 on DSEC's 640×480 are the overlay's), `paper` the ICRA code's 5 000 AA
+/// samples there, of which mapping takes 1 000 (2 500 on DSEC's rig are the sensor's settings).
+/// None for other overlays.
+std::vector<SensorSetting> OverlaySensorSettings(const std::string& overlay,
+                                                 const SensorFacts& sensor);
 
 /// The settings as configuration entries, to apply before a preset's (each entry's origin names
 /// its rule, for messages).
