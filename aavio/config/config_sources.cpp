@@ -30,9 +30,10 @@ Status ApplySources(const ConfigSources& sources, pipeline::OdometryConfig* conf
   }
   const std::vector<std::string> overlays = io::OverlayNames();
   for (const std::string& file : sources.files) {
-    // A shipped overlay's name, unless a file of that name is here.
+    // A shipped overlay's name, unless a file of that name is here (a folder of that name, such
+    // as a run's output, is not a configuration file).
     const bool overlay = std::find(overlays.begin(), overlays.end(), file) != overlays.end() &&
-                         !std::filesystem::exists(file);
+                         !std::filesystem::is_regular_file(file);
     if (overlay) {
       AAVIO_RETURN_IF_ERROR(ApplyOverlay(file, sources, config));
       continue;

@@ -2,9 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <utility>
 
 #include "aavio/sim/presets.hpp"
+#include "tests/test_utils.hpp"
 
 namespace aavio::config {
 namespace {
@@ -58,6 +60,30 @@ TEST(ConfigSources, ReferenceOverlaysTakeTheirBudgetForTheSensor) {
       budget("rpg", {.overlays = {"esvo"},
                      .overrides = {"edge_sampling.num_points=3000", "mapping.max_points=3000"}}),
       Budget(3000, 3000));
+}
+
+// `--config esvo` names the shipped overlay unless a configuration file of that name is in the
+// working folder; a folder of that name (a run's output, say) does not hide it.
+TEST(ConfigSources, AnOverlayNameIsAFileOnlyIfSuchAFileIsThere) {
+  struct WorkingFolder {  // restores the working folder whatever the test does
+    std::filesystem::path before = std::filesystem::current_path();
+    ~WorkingFolder() { std::filesystem::current_path(before); }
+  } restore;
+  const std::filesystem::path dir = testing::ScratchDir();
+  std::filesystem::current_path(dir);
+  auto iterations = [](ConfigSources sources) {
+    ConfigureForRig(Rig("rpg"), &sources);
+    Expected<pipeline::OdometryConfig> config = ResolveOdometryConfig(sources);
+    EXPECT_TRUE(config.ok()) << config.status().message();
+    return config.ok() ? config->tracking.max_iterations : -1;
+  };
+  std::filesystem::create_directories(dir / "esvo" / "run");
+  EXPECT_EQ(iterations({.files = {"esvo"}}), 10);  // the overlay's
+  std::filesystem::create_directories(dir / "paper");
+  EXPECT_EQ(iterations({.files = {"paper"}}), 10);
+  testing::WriteFile(dir / "cfg" / "esvo", "tracking:\n  max_iterations: 7\n");
+  std::filesystem::current_path(dir / "cfg");
+  EXPECT_EQ(iterations({.files = {"esvo"}}), 7);  // the file here
 }
 
 TEST(ConfigSources, BadSourcesAreErrorsThatSayWhatToDo) {
