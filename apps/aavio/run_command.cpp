@@ -35,6 +35,11 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+// How far before its first pose the ground truth still gives the start pose (extrapolated): a
+// recorded path's stamps have sub-microsecond digits where events are stamped in microseconds, so
+// the first event can precede the first pose by a fraction of a microsecond.
+constexpr TimeNs kGroundTruthStartToleranceNs = 1'000'000;
+
 struct RunOptions {
   std::string sequence, calibration, out_dir;
   bool overwrite = false;
@@ -283,7 +288,8 @@ Expected<bool> Run(RunOptions options, Context& ctx) {
     Expected<GroundTruthMaps> maps = GroundTruthMaps::Create(*opened, gt_poses);
     if (!maps) return maps.status();
     gt_maps.emplace(std::move(*maps));
-    Expected<geometry::RigidTransform> at_start = gt_poses.Query(begin);
+    Expected<geometry::RigidTransform> at_start =
+        gt_poses.Query(begin, kGroundTruthStartToleranceNs);
     if (!at_start) return at_start.status().WithContext("ground truth at the start");
     start_pose = *at_start;
   }
