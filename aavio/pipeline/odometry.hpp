@@ -82,8 +82,7 @@ class Odometry {
   /// samples in the IMU's clock) and runs the ticks due by then (all, or with kLatest the last);
   /// each goes to `on_tick`. Once IMU samples come in, a tick at t waits for the one at or after
   /// t + the IMU time offset (up to 50 ms longer: then it runs without), until the next call or
-  /// Finish. How the
-  /// data is split into calls does not change the output.
+  /// Finish. How the data is split into calls does not change the output.
   Status Process(std::span<const events::Event> left, std::span<const events::Event> right,
                  std::span<const imu::ImuSample> imu, TimeNs t_end_ns,
                  TickPolicy policy = TickPolicy::kEvery);
