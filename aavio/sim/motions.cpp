@@ -43,6 +43,28 @@ std::vector<geometry::StampedPose> HandHeldMotion(double duration_s, std::uint64
   return poses;
 }
 
+std::vector<geometry::StampedPose> SinusoidMotion(double duration_s, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> period(3.0, 6.0), phase(0.0, 2.0 * M_PI),
+      angle(5.0 * M_PI / 180.0, 8.0 * M_PI / 180.0);
+  const double amplitude[6] = {0.25, 0.1, 0.2, angle(rng), angle(rng), angle(rng)};
+  double omega[6], phi[6];
+  for (int k = 0; k < 6; ++k) {
+    omega[k] = 2.0 * M_PI / period(rng);
+    phi[k] = phase(rng);
+  }
+  auto axis = [&](int k, double t) {
+    return amplitude[k] * (std::sin(omega[k] * t + phi[k]) - std::sin(phi[k]));
+  };
+  std::vector<geometry::StampedPose> poses;
+  for (double t = 0.0; t <= duration_s + 1e-9; t += 1.0 / kRate) {
+    poses.push_back({SecondsToNs(t),
+                     {geometry::ExpSO3(Eigen::Vector3d(axis(3, t), axis(4, t), axis(5, t))),
+                      Eigen::Vector3d(axis(0, t), axis(1, t), axis(2, t))}});
+  }
+  return poses;
+}
+
 std::vector<geometry::StampedPose> DrivingMotion(double duration_s, std::uint64_t seed) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> unit(0.0, 1.0);

@@ -15,6 +15,11 @@ std::vector<geometry::StampedPose> DrivingMotion(double duration_s, std::uint64_
 /// Drone flight in a hall: take-off-free hovering with translations of ±1.5 m and yaw (MVSEC).
 std::vector<geometry::StampedPose> DroneMotion(double duration_s, std::uint64_t seed);
 
+/// Smooth analytic 6-DoF motion, unlike the random-walk ones: each axis one sinusoid (periods
+/// 3–6 s, random phases; ±0.25 m across, ±0.1 m vertically, ±0.2 m in depth, ±5–8° of each
+/// rotation), already moving at t = 0; about 0.3 m/s and 15 °/s.
+std::vector<geometry::StampedPose> SinusoidMotion(double duration_s, std::uint64_t seed);
+
 /// Gravity in the world frame of these motions [m/s²].
 inline Eigen::Vector3d BuiltInGravity() {
   return {0.0, 9.81, 0.0};

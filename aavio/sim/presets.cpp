@@ -244,6 +244,16 @@ Expected<geometry::StereoRig> VectorRig() {
       geometry::RigidTransform::FromMatrix(T), {});
 }
 
+// An ideal rectified pinhole pair (no distortion, parallel cameras): f 200 px, baseline 0.15 m,
+// the IMU on the left camera.
+Expected<geometry::StereoRig> PinholeRig() {
+  const CameraIntrinsics camera{240, 180, 200.0, 200.0, 119.5, 89.5, DistortionModel::kNone, {}};
+  const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
+  return Make(camera, camera, I, I, Projection(200.0, 119.5, 89.5, 0.0),
+              Projection(200.0, 119.5, 89.5, -200.0 * 0.15), {I, Eigen::Vector3d(-0.15, 0.0, 0.0)},
+              {});
+}
+
 SimulationPreset Preset(std::string name, std::string description, SceneKind scene,
                         MotionKind motion, double duration_s,
                         Expected<geometry::StereoRig> (*rig)()) {
@@ -286,6 +296,11 @@ std::vector<SimulationPreset> AllPresets() {
     p->camera = CameraKind::kProphesee;
     presets.push_back(*p);
   }
+  SimulationPreset planes =
+      Preset("planes", "ideal 240x180 pinhole pair, sparse scene of textured planes, sinusoid",
+             SceneKind::kPlanes, MotionKind::kSinusoid, 8.0, &PinholeRig);
+  planes.events = rpg.events;
+  presets.push_back(planes);
   SimulationPreset mini = Preset("mini", "rpg pair at 160x120, room, hand-held, 3 s (tests, demo)",
                                  SceneKind::kRoom, MotionKind::kHandHeld, 3.0, &MiniRig);
   mini.imu.rate_hz = 500.0;

@@ -6,6 +6,8 @@
 ///   mvsec  the DAVIS346 pair of MVSEC (upenn calibration, equidistant), hall, drone flight
 ///   tum_vie  the 1280×720 Prophesee pair of TUM-VIE (mocap-desk calibration), office, hand-held
 ///   vector   the 640×480 Prophesee pair of VECtor, lab, hand-held
+///   planes an ideal rectified 240×180 pinhole pair (f 200 px, baseline 0.15 m), a sparse scene
+///          of a few textured planes, a smooth sinusoidal 6-DoF motion, 8 s
 ///   mini   the rpg pair at 2/3 resolution (160×120), room, hand-held, 3 s: tests and the demo
 
 #include <string>
@@ -19,7 +21,7 @@
 
 namespace aavio::sim {
 
-enum class MotionKind { kHandHeld, kDriving, kDrone };
+enum class MotionKind { kHandHeld, kDriving, kDrone, kSinusoid };
 /// The sensor family, for the realistic sensor levels (sensor_model.hpp): their refractory
 /// period, noise and readout differ.
 enum class CameraKind { kDavis, kProphesee };

@@ -237,6 +237,35 @@ Scene BuildStreet(const std::vector<geometry::StampedPose>& path, const Eigen::V
   return scene;
 }
 
+Scene BuildPlanes(std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const Eigen::Vector3d X = Eigen::Vector3d::UnitX(), Y = Eigen::Vector3d::UnitY(),
+                        Z = Eigen::Vector3d::UnitZ();
+  // Coarse, low-contrast patterns: few edges, and weak ones.
+  auto sparse = [&](double cell_lo, double cell_hi) {
+    Texture t = RandomTexture(rng, cell_lo, cell_hi);
+    t.contrast = 0.25 + 0.25 * unit(rng);
+    return t;
+  };
+  Scene scene;
+  const double y_floor = 1.0, y_top = -2.0, z_wall = 3.5;
+  scene.AddQuad(
+      MakeQuad({-4.0, y_floor, z_wall}, X * 8.0, -Y * (y_floor - y_top), sparse(0.35, 0.6)));
+  scene.AddQuad(MakeQuad({-4.0, y_floor, -1.0}, X * 8.0, Z * (z_wall + 1.0), sparse(0.3, 0.6)));
+  // Two panels standing on the floor, turned up to ±30° towards the camera.
+  for (int k = 0; k < 2; ++k) {
+    const double w = 0.8 + 0.4 * unit(rng), h = 1.2 + 0.5 * unit(rng);
+    const double x = (k == 0 ? -1.3 : 0.4) + 0.3 * unit(rng), z = 1.6 + 1.0 * unit(rng);
+    const double yaw = (k == 0 ? 1.0 : -1.0) * (0.2 + 0.3 * unit(rng));
+    const Eigen::Vector3d across(std::cos(yaw), 0.0, std::sin(yaw));
+    scene.AddQuad(MakeQuad({x, y_floor, z}, across * w, -Y * h, sparse(0.25, 0.45)));
+  }
+  scene.sky_albedo = 0.5;
+  scene.Build();
+  return scene;
+}
+
 Scene BuildScene(SceneKind kind, const std::vector<geometry::StampedPose>& path,
                  const Eigen::Vector3d& down, double camera_height_m, std::uint64_t seed) {
   switch (kind) {
@@ -248,6 +277,8 @@ Scene BuildScene(SceneKind kind, const std::vector<geometry::StampedPose>& path,
       return BuildHall(seed);
     case SceneKind::kStreet:
       return BuildStreet(path, down, camera_height_m, seed);
+    case SceneKind::kPlanes:
+      return BuildPlanes(seed);
     case SceneKind::kRoom:
       break;
   }

@@ -9,7 +9,7 @@
 
 namespace aavio::sim {
 
-enum class SceneKind { kRoom, kOffice, kLab, kHall, kStreet };
+enum class SceneKind { kRoom, kOffice, kLab, kHall, kStreet, kPlanes };
 
 /// rpg-like room: walls ~3 m around the start, floor 1.3 m below the camera, posters and boxes
 /// 0.5–4 m from the start position.
@@ -26,6 +26,11 @@ Scene BuildHall(std::uint64_t seed);
 /// road with markings, facades 6–15 m to each side with windows and ledges, poles, parked cars.
 Scene BuildStreet(const std::vector<geometry::StampedPose>& path, const Eigen::Vector3d& down,
                   double camera_height_m, std::uint64_t seed);
+
+/// A sparse scene of a few textured planes, unlike the furnished ones: a back wall 3.5 m ahead,
+/// two free-standing panels 1.6–2.6 m ahead, and the floor 1 m below the camera, each with a
+/// coarse, low-contrast pattern (cells of 0.25–0.6 m): a tenth of the rooms' edges.
+Scene BuildPlanes(std::uint64_t seed);
 
 /// The scene of `kind`; the street is laid along `path` (the others ignore it, `down` and
 /// `camera_height_m`).

@@ -83,6 +83,34 @@ TEST(SceneBuilder, IndoorScenesSurroundTheStartAtTheirDatasetsDepths) {
   }
 }
 
+TEST(SceneBuilder, PlanesAreAFewTexturedPlanesAheadOfTheCamera) {
+  for (std::uint64_t seed : {1, 2, 3}) {
+    SCOPED_TRACE(seed);
+    const Scene scene = BuildPlanes(seed);
+    EXPECT_EQ(scene.quads().size(), 4u);  // back wall, floor, two panels
+    const std::vector<double> ahead = DepthsAhead(scene, 20.0 * M_PI / 180.0);
+    ASSERT_EQ(ahead.size(), 21u * 21u);
+    EXPECT_NEAR(*std::max_element(ahead.begin(), ahead.end()), 3.5, 0.05);
+    EXPECT_GT(*std::min_element(ahead.begin(), ahead.end()), 1.0);
+    for (const Quad& q : scene.quads())
+      EXPECT_LE(q.texture.contrast, 0.5);  // weak edges
+  }
+}
+
+TEST(SceneBuilder, SinusoidMotionStartsAtTheOriginMovingAndStaysNearIt) {
+  const std::vector<geometry::StampedPose> poses = SinusoidMotion(8.0, 3);
+  ASSERT_EQ(poses.size(), 1601u);
+  EXPECT_LT(poses.front().T_world_body.t.norm(), 1e-12);
+  EXPECT_GT((poses[1].T_world_body.t - poses[0].T_world_body.t).norm(), 1e-4);  // mid-motion
+  double path_m = 0.0;
+  for (std::size_t i = 1; i < poses.size(); ++i) {
+    path_m += (poses[i].T_world_body.t - poses[i - 1].T_world_body.t).norm();
+    EXPECT_LT(poses[i].T_world_body.t.norm(), 0.8);
+  }
+  EXPECT_GT(path_m, 1.5);
+  EXPECT_LT(path_m, 5.0);
+}
+
 TEST(SceneBuilder, ScenesAreDeterministicFromTheSeed) {
   for (SceneKind kind : {SceneKind::kOffice, SceneKind::kLab}) {
     const Scene a = BuildScene(kind, {}, BuiltInGravity(), 1.4, 7);

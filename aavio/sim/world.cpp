@@ -127,6 +127,9 @@ Expected<CameraPath> FollowedMotion(const SimulationRequest& request,
       case MotionKind::kDrone:
         motion.poses = DroneMotion(duration, request.seed);
         break;
+      case MotionKind::kSinusoid:
+        motion.poses = SinusoidMotion(duration, request.seed);
+        break;
     }
     motion.gravity_world = BuiltInGravity();
     return motion;
