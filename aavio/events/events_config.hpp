@@ -12,12 +12,19 @@ namespace aavio::events {
 struct TimeSurfaceConfig {
   double rate_hz = 100.0;  ///< TS/AA generation rate in data time, one "tick" each [paper]
   double decay_ms = 30.0;  ///< exponential decay τ [ms] ([ICRA], [ESVO]; ESVO2 uses 20)
+  /// aavio, off by default (0: a fixed τ, as the references): where the image moves slowly, τ is
+  /// lengthened so that edges travel this many pixels within it (up to 10 τ), measured from the
+  /// tracked poses and the map. A sparse scene seen by a slow camera then still draws edges that
+  /// registration can follow; in a dense scene the longer trails cost accuracy (docs/tracking.md).
+  double min_edge_travel_px = 0.0;
 
   template <typename V>
   void VisitFields(V&& v) {
     v("rate_hz", rate_hz,
       "ticks per second of data time: one time surface and one registration each");
     v("decay_ms", decay_ms, "exponential decay τ of the time surface [ms]");
+    v("min_edge_travel_px", min_edge_travel_px,
+      "lengthen τ (up to 10x) so that edges travel this far within it; 0: fixed τ (aavio)");
   }
   Status Validate() const;
 };

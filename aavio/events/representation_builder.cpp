@@ -85,7 +85,8 @@ Status RepresentationBuilder::Build(TimeNs t_ns, Observation* out, BuildOptions 
   auto start = Clock::now();
   AAVIO_RETURN_IF_ERROR(Consume(left_, t_ns, true, &out->new_events_left));
   AAVIO_RETURN_IF_ERROR(Consume(right_, t_ns, false, &out->new_events_right));
-  const double decay_ms = config_.time_surface.decay_ms;
+  const double decay_ms =
+      options.decay_ms > 0.0 ? options.decay_ms : config_.time_surface.decay_ms;
   for (CameraState* camera : {&left_, &right_}) {
     if (camera == &right_ && !options.right_ts) {
       out->ts_right.release();

@@ -29,8 +29,9 @@ enum class Camera { kLeft, kRight };
 
 /// What a tick draws beyond the left time surface and its derived images.
 struct BuildOptions {
-  bool right_ts = true;  ///< the right time surface (static stereo, bootstrap)
-  bool edges = true;     ///< the AA map and the edge samples (mapping)
+  bool right_ts = true;   ///< the right time surface (static stereo, bootstrap)
+  bool edges = true;      ///< the AA map and the edge samples (mapping)
+  double decay_ms = 0.0;  ///< the time surfaces' τ; 0: time_surface.decay_ms
 };
 
 class RepresentationBuilder {

@@ -275,6 +275,7 @@ TEST(SgmBootstrap, DepthOfAShiftedTextureAndTooFewPoints) {
     right += std::abs(stereo.Disparity(p.rho) - 16.0) < 0.5;
   EXPECT_GT(right, static_cast<int>(sgm->size()) * 9 / 10);
   config.bootstrap.min_points = 100000;
+  config.bootstrap.min_coverage = 0.0;
   const auto refused =
       BootstrapWithSgm(left8, right8, points, stereo, config.bootstrap,
                        config.depth_refinement.student_t_nu, config.inv_depth_range());

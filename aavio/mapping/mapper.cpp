@@ -161,12 +161,9 @@ Status Mapper::Initialize(const PosedObservation& now) {
     points =
         RefineDepths({left, right, nullptr, nullptr, {}}, matches, stereo_,
                      config_.depth_refinement, config_.temporal_stereo, config_.inv_depth_range());
-    if (static_cast<int>(points.size()) < config_.bootstrap.min_points) {
+    if (!config_.bootstrap.Accepts(points.size(), samples.size()))
       return FailedPrecondition(
-          StrFormat("block-matching bootstrap found %zu points at the %zu edge samples, fewer "
-                    "than mapping.bootstrap.min_points = %d",
-                    points.size(), samples.size(), config_.bootstrap.min_points));
-    }
+          config_.bootstrap.Refusal("block-matching", points.size(), samples.size()));
     for (DepthPoint& p : points)
       p.age = kMinAge;  // survives the first cleanings, as SGM points
   } else {

@@ -127,6 +127,7 @@ TEST(Mapper, BootstrapsByBlockMatching) {
   }
 
   config.bootstrap.min_points = 100000;
+  config.bootstrap.min_coverage = 0.0;
   Mapper picky(stereo, valid, config);
   const Status status = picky.Initialize({obs, {}});
   EXPECT_EQ(status.code(), StatusCode::kFailedPrecondition);

@@ -1,5 +1,7 @@
 #include "aavio/mapping/mapping_config.hpp"
 
+#include "aavio/common/format.hpp"
+
 namespace aavio::mapping {
 
 Status StaticStereoConfig::Validate() const {
@@ -51,7 +53,8 @@ Status FusionConfig::Validate() const {
 
 Status BootstrapConfig::Validate() const {
   FieldChecker check;
-  check.InRange("min_points", min_points, 1, 10000000);
+  check.InRange("min_points", min_points, 1, 10000000)
+      .InRange("min_coverage", min_coverage, 0.0, 1.0);
   return check.status();
 }
 
@@ -73,6 +76,15 @@ Status MappingConfig::Validate() const {
       .Nested("regularization", regularization)
       .Nested("bootstrap", bootstrap);
   return check.status();
+}
+
+std::string BootstrapConfig::Refusal(const char* stereo, std::size_t points,
+                                     std::size_t samples) const {
+  return StrFormat(
+      "%s bootstrap found %zu points at the %zu edge samples: fewer than "
+      "mapping.bootstrap.min_points = %d, and fewer than mapping.bootstrap.min_coverage = %g of "
+      "the samples or than %zu",
+      stereo, points, samples, min_points, min_coverage, kMinRegistrationPoints);
 }
 
 }  // namespace aavio::mapping

@@ -49,12 +49,8 @@ Expected<std::vector<DepthPoint>> BootstrapWithSgm(const cv::Mat& ts_left, const
     p.age = kMinAge;  // survives the first cleanings
     out.push_back(p);
   }
-  if (static_cast<int>(out.size()) < b.min_points) {
-    return FailedPrecondition(
-        StrFormat("SGM bootstrap found %zu points at the edge samples, fewer "
-                  "than mapping.bootstrap.min_points = %d",
-                  out.size(), b.min_points));
-  }
+  if (!b.Accepts(out.size(), points.size()))
+    return FailedPrecondition(b.Refusal("SGM", out.size(), points.size()));
   return out;
 }
 

@@ -30,6 +30,8 @@ Odometry::Odometry(const geometry::StereoRig& rig, const OdometryConfig& config,
       tracker_(CameraOf(rig), config.tracking, config.imu,
                rig.T_imu_rect_left().value_or(geometry::RigidTransform()),
                static_cast<std::uint64_t>(config.pipeline.random_seed)),
+      camera_(CameraOf(rig)),
+      decay_(config.time_surface.decay_ms, config.time_surface.min_edge_travel_px),
       mapper_(stereo_, rectification_.left.valid_mask, config.mapping),
       imu_offset_ns_(SecondsToNs(config.imu.time_offset_s)),
       last_t_end_ns_(start_ns),
@@ -107,6 +109,22 @@ Status Odometry::RunTicks(TickPolicy policy, bool finishing) {
   return Status::Ok();
 }
 
+void Odometry::UpdateDecay(const tracking::TrackingResult& tracked) {
+  const tracking::TrackingMap* map = tracker_.map();
+  if (map == nullptr) decay_.Reset();
+  const bool ok = tracked.status == tracking::TrackingStatus::kOk;
+  if (ok && map != nullptr && last_tracked_) {
+    decay_.AddSpeed(tracking::MedianImageSpeed(map->points_world, last_tracked_->T_world_cam,
+                                               tracked.T_world_cur, camera_,
+                                               NsToSeconds(tracked.t_ns - last_tracked_->t_ns)));
+  }
+  if (ok) {
+    last_tracked_ = TrackedPose{tracked.t_ns, tracked.T_world_cur};
+  } else {
+    last_tracked_.reset();
+  }
+}
+
 void Odometry::PublishToTracking(const mapping::LocalMapPtr& map) {
   if (!map) {
     tracker_.SetMap(nullptr);
@@ -146,7 +164,8 @@ Status Odometry::Tick(TimeNs t_ns, int skipped_ticks) {
     next_cycle_ns_ += cycle_ns_;
   const bool maps_here = run_mapping_ && (!mapper_.initialized() || cycle_due);
   AAVIO_RETURN_IF_ERROR(builder_.Build(
-      t_ns, obs.get(), {.right_ts = maps_here, .edges = maps_here || !run_mapping_}));
+      t_ns, obs.get(),
+      {.right_ts = maps_here, .edges = maps_here || !run_mapping_, .decay_ms = decay_.decay_ms()}));
   ++ticks_;
   OdometryTick tick;
   tick.t_ns = t_ns;
@@ -176,6 +195,7 @@ Status Odometry::Tick(TimeNs t_ns, int skipped_ticks) {
   tick.tracking_ms = tracked.prediction_ms + tracked.registration_ms;
   tick.prediction_ms = tracked.prediction_ms;
   tick.gyro_bias = tracker_.gyro_bias();
+  UpdateDecay(tracked);
   if (!run_mapping_) {
     if (on_tick) on_tick(tick);
     return Status::Ok();

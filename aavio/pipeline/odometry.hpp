@@ -24,6 +24,7 @@
 #include <deque>
 #include <functional>
 #include <future>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -32,6 +33,7 @@
 #include "aavio/geometry/rectification.hpp"
 #include "aavio/mapping/mapper.hpp"
 #include "aavio/pipeline/odometry_config.hpp"
+#include "aavio/tracking/image_motion.hpp"
 #include "aavio/tracking/tracker.hpp"
 
 namespace aavio::pipeline {
@@ -112,6 +114,8 @@ class Odometry {
   // The IMU samples of the tick at t_ns, in camera time.
   std::vector<imu::ImuSample> ImuWindow(TimeNs t_ns);
   void PublishToTracking(const mapping::LocalMapPtr& map);
+  // The image speed of a tracked tick against the last, for the next ticks' time-surface decay.
+  void UpdateDecay(const tracking::TrackingResult& tracked);
   // Concurrent and real-time modes: a mapping cycle on its own thread, and its result.
   struct CycleResult {
     Status status = Status::Ok();
@@ -126,6 +130,13 @@ class Odometry {
   mapping::RectifiedStereo stereo_;
   events::RepresentationBuilder builder_;
   tracking::Tracker tracker_;
+  tracking::Camera camera_;
+  tracking::TimeSurfaceDecay decay_;
+  struct TrackedPose {
+    TimeNs t_ns;
+    geometry::RigidTransform T_world_cam;
+  };
+  std::optional<TrackedPose> last_tracked_;  // the last tick, if it tracked
   mapping::Mapper mapper_;
   std::deque<imu::ImuSample> imu_;  // IMU clock
   TimeNs imu_offset_ns_;            // t_imu − t_cam

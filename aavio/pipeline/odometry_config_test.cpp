@@ -45,7 +45,8 @@ TEST(OdometryConfig, EveryKeyHasAOneLineDescription) {
 // The reference overlays — ESVO-like (`aavio run --esvo`) and the paper's method as published
 // (`--config paper`) — set every aavio addition — each key whose description marks it "(aavio)"
 // — to the reference codes' behaviour, which is the addition's default (off), except
-// snap_to_edge_px, on by default: so no preset's addition survives in the baselines.
+// snap_to_edge_px and bootstrap.min_coverage, on by default: so no preset's addition survives in
+// the baselines.
 class ReferenceOverlay : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(ReferenceOverlay, TurnsOffEveryAavioAddition) {
@@ -77,8 +78,10 @@ TEST_P(ReferenceOverlay, TurnsOffEveryAavioAddition) {
       if (default_index.fields.at(key).doc.find("(aavio)") == std::string::npos) continue;
       ++additions;
       EXPECT_TRUE(set_by_overlay.count(key)) << key << " is an aavio addition the overlay leaves";
+      const bool on_by_default =
+          key == "mapping.snap_to_edge_px" || key == "mapping.bootstrap.min_coverage";
       const std::string expected =
-          key == "mapping.snap_to_edge_px" ? "0.0" : default_index.fields.at(key).get().scalar;
+          on_by_default ? "0.0" : default_index.fields.at(key).get().scalar;
       EXPECT_EQ(index.fields.at(key).get().scalar, expected) << key;
     }
   }

@@ -110,6 +110,7 @@ TEST(Odometry, BootstrapsOnceThenTracks) {
 TEST(Odometry, SaysWhyTheBootstrapFailsAndRetriesEveryTick) {
   OdometryConfig config = RpgPreset();
   config.mapping.bootstrap.min_points = 1000000;
+  config.mapping.bootstrap.min_coverage = 0.0;
   const std::vector<OdometryTick> ticks = RunMini(config);
   ASSERT_GT(ticks.size(), 100u);
   for (const OdometryTick& t : ticks) {

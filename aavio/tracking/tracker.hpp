@@ -78,6 +78,7 @@ class Tracker {
   /// Starts (or restarts, keeping the gyroscope bias estimate) at a known pose.
   void Reset(TimeNs t_ns, const geometry::RigidTransform& T_world_cam, bool keep_velocity = false);
   void SetMap(std::shared_ptr<const TrackingMap> map) { map_ = std::move(map); }
+  const TrackingMap* map() const { return map_.get(); }
   /// The gyroscope bias in use (configured, static-init, online or the back-end's estimate);
   /// valid after Reset.
   Eigen::Vector3d gyro_bias() const;

@@ -9,7 +9,7 @@ namespace aavio::tracking {
 struct TrackingConfig {
   int max_points = 2000;     ///< map points sampled per registration problem [paper ~2k]
   int batch_size = 300;      ///< points per LM step (≥ max_points: all points, plain LM)
-  int min_map_points = 300;  ///< fewer map points than this: no tracking (kNoMap)
+  int min_map_points = 50;  ///< fewer map points than this: no tracking (kNoMap)
   int max_iterations = 10;   ///< LM steps per tick ([ICRA], [ESVO]; ESVO2 rpg 20)
   /// aavio: LM steps on all points after the mini-batches (0 = the reference)
   int polish_iterations = 0;
