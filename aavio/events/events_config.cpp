@@ -4,8 +4,7 @@ namespace aavio::events {
 
 Status TimeSurfaceConfig::Validate() const {
   FieldChecker check;
-  check.InRange("rate_hz", rate_hz, 1.0, 2000.0).InRange("decay_ms", decay_ms, 0.1, 10000.0)
-      .InRange("min_edge_travel_px", min_edge_travel_px, 0.0, 100.0);
+  check.InRange("rate_hz", rate_hz, 1.0, 2000.0).InRange("decay_ms", decay_ms, 0.1, 10000.0);
   return check.status();
 }
 

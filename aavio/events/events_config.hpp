@@ -12,19 +12,18 @@ namespace aavio::events {
 struct TimeSurfaceConfig {
   double rate_hz = 100.0;  ///< TS/AA generation rate in data time, one "tick" each [paper]
   double decay_ms = 30.0;  ///< exponential decay τ [ms] ([ICRA], [ESVO]; ESVO2 uses 20)
-  /// aavio, off by default (0: a fixed τ, as the references): where the image moves slowly, τ is
-  /// lengthened so that edges travel this many pixels within it (up to 10 τ), measured from the
-  /// tracked poses and the map. A sparse scene seen by a slow camera then still draws edges that
-  /// registration can follow; in a dense scene the longer trails cost accuracy (docs/tracking.md).
-  double min_edge_travel_px = 0.0;
+  /// aavio (off: a fixed τ, as the references): τ is kept at least as long as the events at the
+  /// map's edges are old (their median age over the last ticks, up to 10 τ), so that a slow camera
+  /// or a sparse scene still draws its edges (tracking/edge_age.hpp).
+  bool adaptive_decay = true;
 
   template <typename V>
   void VisitFields(V&& v) {
     v("rate_hz", rate_hz,
       "ticks per second of data time: one time surface and one registration each");
     v("decay_ms", decay_ms, "exponential decay τ of the time surface [ms]");
-    v("min_edge_travel_px", min_edge_travel_px,
-      "lengthen τ (up to 10x) so that edges travel this far within it; 0: fixed τ (aavio)");
+    v("adaptive_decay", adaptive_decay,
+      "τ at least the age of the events at the map's edges, up to 10x (aavio)");
   }
   Status Validate() const;
 };

@@ -31,7 +31,7 @@ Odometry::Odometry(const geometry::StereoRig& rig, const OdometryConfig& config,
                rig.T_imu_rect_left().value_or(geometry::RigidTransform()),
                static_cast<std::uint64_t>(config.pipeline.random_seed)),
       camera_(CameraOf(rig)),
-      decay_(config.time_surface.decay_ms, config.time_surface.min_edge_travel_px),
+      decay_(config.time_surface.decay_ms, config.time_surface.adaptive_decay),
       mapper_(stereo_, rectification_.left.valid_mask, config.mapping),
       imu_offset_ns_(SecondsToNs(config.imu.time_offset_s)),
       last_t_end_ns_(start_ns),
@@ -109,20 +109,13 @@ Status Odometry::RunTicks(TickPolicy policy, bool finishing) {
   return Status::Ok();
 }
 
-void Odometry::UpdateDecay(const tracking::TrackingResult& tracked) {
+void Odometry::MeasureEdgeAge(const geometry::RigidTransform& T_world_cam,
+                              const events::Observation& obs) {
   const tracking::TrackingMap* map = tracker_.map();
-  if (map == nullptr) decay_.Reset();
-  const bool ok = tracked.status == tracking::TrackingStatus::kOk;
-  if (ok && map != nullptr && last_tracked_) {
-    decay_.AddSpeed(tracking::MedianImageSpeed(map->points_world, last_tracked_->T_world_cam,
-                                               tracked.T_world_cur, camera_,
-                                               NsToSeconds(tracked.t_ns - last_tracked_->t_ns)));
-  }
-  if (ok) {
-    last_tracked_ = TrackedPose{tracked.t_ns, tracked.T_world_cur};
-  } else {
-    last_tracked_.reset();
-  }
+  if (map == nullptr) return;
+  const double age_ms = tracking::MedianEdgeAgeMs(map->points_world, T_world_cam, camera_,
+                                                  obs.ts_left, decay_.decay_ms());
+  if (age_ms >= 0.0) decay_.AddEdgeAge(age_ms);
 }
 
 void Odometry::PublishToTracking(const mapping::LocalMapPtr& map) {
@@ -195,7 +188,7 @@ Status Odometry::Tick(TimeNs t_ns, int skipped_ticks) {
   tick.tracking_ms = tracked.prediction_ms + tracked.registration_ms;
   tick.prediction_ms = tracked.prediction_ms;
   tick.gyro_bias = tracker_.gyro_bias();
-  UpdateDecay(tracked);
+  if (tracked.status == tracking::TrackingStatus::kOk) MeasureEdgeAge(tracked.T_world_cur, *obs);
   if (!run_mapping_) {
     if (on_tick) on_tick(tick);
     return Status::Ok();
@@ -212,6 +205,7 @@ Status Odometry::Tick(TimeNs t_ns, int skipped_ticks) {
       tick.map = mapper_.local_map();
       tick.map_observation = obs;
       PublishToTracking(tick.map);
+      MeasureEdgeAge(tracked.T_world_cur, *obs);  // the first map's own edges, as they are now
       lost_ticks_ = 0;
     }
   } else if (tracked.status == tracking::TrackingStatus::kOk) {

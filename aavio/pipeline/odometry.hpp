@@ -33,7 +33,7 @@
 #include "aavio/geometry/rectification.hpp"
 #include "aavio/mapping/mapper.hpp"
 #include "aavio/pipeline/odometry_config.hpp"
-#include "aavio/tracking/image_motion.hpp"
+#include "aavio/tracking/edge_age.hpp"
 #include "aavio/tracking/tracker.hpp"
 
 namespace aavio::pipeline {
@@ -114,8 +114,8 @@ class Odometry {
   // The IMU samples of the tick at t_ns, in camera time.
   std::vector<imu::ImuSample> ImuWindow(TimeNs t_ns);
   void PublishToTracking(const mapping::LocalMapPtr& map);
-  // The image speed of a tracked tick against the last, for the next ticks' time-surface decay.
-  void UpdateDecay(const tracking::TrackingResult& tracked);
+  // The age of the events at the map's edges seen from T_world_cam, for the next ticks' decay.
+  void MeasureEdgeAge(const geometry::RigidTransform& T_world_cam, const events::Observation& obs);
   // Concurrent and real-time modes: a mapping cycle on its own thread, and its result.
   struct CycleResult {
     Status status = Status::Ok();
@@ -131,12 +131,7 @@ class Odometry {
   events::RepresentationBuilder builder_;
   tracking::Tracker tracker_;
   tracking::Camera camera_;
-  tracking::TimeSurfaceDecay decay_;
-  struct TrackedPose {
-    TimeNs t_ns;
-    geometry::RigidTransform T_world_cam;
-  };
-  std::optional<TrackedPose> last_tracked_;  // the last tick, if it tracked
+  tracking::AdaptiveDecay decay_;
   mapping::Mapper mapper_;
   std::deque<imu::ImuSample> imu_;  // IMU clock
   TimeNs imu_offset_ns_;            // t_imu − t_cam

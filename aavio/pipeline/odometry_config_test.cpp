@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <map>
 #include <set>
 
 #include "aavio/io/presets.hpp"
@@ -44,9 +45,8 @@ TEST(OdometryConfig, EveryKeyHasAOneLineDescription) {
 
 // The reference overlays — ESVO-like (`aavio run --esvo`) and the paper's method as published
 // (`--config paper`) — set every aavio addition — each key whose description marks it "(aavio)"
-// — to the reference codes' behaviour, which is the addition's default (off), except
-// snap_to_edge_px and bootstrap.min_coverage, on by default: so no preset's addition survives in
-// the baselines.
+// — to the reference codes' behaviour, which is the addition's default (off), except for the
+// few on by default: so no preset's addition survives in the baselines.
 class ReferenceOverlay : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(ReferenceOverlay, TurnsOffEveryAavioAddition) {
@@ -78,10 +78,14 @@ TEST_P(ReferenceOverlay, TurnsOffEveryAavioAddition) {
       if (default_index.fields.at(key).doc.find("(aavio)") == std::string::npos) continue;
       ++additions;
       EXPECT_TRUE(set_by_overlay.count(key)) << key << " is an aavio addition the overlay leaves";
-      const bool on_by_default =
-          key == "mapping.snap_to_edge_px" || key == "mapping.bootstrap.min_coverage";
+      // The additions on by default, with the reference codes' value.
+      const std::map<std::string, std::string> on_by_default = {
+          {"mapping.snap_to_edge_px", "0.0"},
+          {"mapping.bootstrap.min_coverage", "0.0"},
+          {"time_surface.adaptive_decay", "false"}};
+      const auto on = on_by_default.find(key);
       const std::string expected =
-          on_by_default ? "0.0" : default_index.fields.at(key).get().scalar;
+          on != on_by_default.end() ? on->second : default_index.fields.at(key).get().scalar;
       EXPECT_EQ(index.fields.at(key).get().scalar, expected) << key;
     }
   }
