@@ -24,7 +24,6 @@
 #include <deque>
 #include <functional>
 #include <future>
-#include <optional>
 #include <span>
 #include <string>
 #include <vector>

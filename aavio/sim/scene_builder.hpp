@@ -29,7 +29,8 @@ Scene BuildStreet(const std::vector<geometry::StampedPose>& path, const Eigen::V
 
 /// A sparse scene of a few textured planes, unlike the furnished ones: a back wall 3.5 m ahead,
 /// two free-standing panels 1.6–2.6 m ahead, and the floor 1 m below the camera, each with a
-/// coarse, low-contrast pattern (cells of 0.25–0.6 m): a tenth of the rooms' edges.
+/// coarse, low-contrast pattern (cells of 0.25–0.6 m): 1–4 events per pixel per second at the
+/// planes preset's motion, a tenth of the rooms'.
 Scene BuildPlanes(std::uint64_t seed);
 
 /// The scene of `kind`; the street is laid along `path` (the others ignore it, `down` and
