@@ -111,12 +111,14 @@ void WarpTime(const std::vector<Disturbance>& disturbances,
   }
 }
 
-// The motion of the preset or the recorded trajectory, `extra_s` seconds longer than asked.
+// The motion of the preset or the recorded trajectory, `extra_s` seconds longer than asked, in
+// the motion's own time (request.speed times data time).
 Expected<CameraPath> FollowedMotion(const SimulationRequest& request,
                                     const SimulationPreset& preset, double extra_s) {
+  const double speed = request.speed;
   if (request.trajectory.empty()) {
     CameraPath motion;
-    const double duration = request.duration_s.value_or(preset.duration_s) + extra_s;
+    const double duration = request.duration_s.value_or(preset.duration_s) * speed + extra_s;
     switch (preset.motion) {
       case MotionKind::kHandHeld:
         motion.poses = HandHeldMotion(duration, request.seed);
@@ -137,14 +139,24 @@ Expected<CameraPath> FollowedMotion(const SimulationRequest& request,
   Expected<std::vector<geometry::StampedPose>> recorded = io::ReadTumTrajectory(request.trajectory);
   if (!recorded) return recorded.status();
   Expected<CameraPath> path = CameraPathFromRecording(
-      *recorded, request.start_s, request.duration_s ? *request.duration_s + extra_s : 0.0,
+      *recorded, request.start_s, request.duration_s ? *request.duration_s * speed + extra_s : 0.0,
       request.body_to_camera);
   if (!path) return path.status().WithContext(request.trajectory);
   return path;
 }
 
+// Restamps poses of the motion's own time to data time: t − t0 becomes (t − t0) / speed.
+void ApplySpeed(double speed, std::vector<geometry::StampedPose>* poses) {
+  if (speed == 1.0 || poses->empty()) return;
+  const TimeNs t0 = poses->front().t_ns;
+  for (geometry::StampedPose& p : *poses)
+    p.t_ns = t0 + static_cast<TimeNs>(std::llround(static_cast<double>(p.t_ns - t0) / speed));
+}
+
 Expected<CameraPath> BuildMotion(const SimulationRequest& request, const SimulationPreset& preset) {
-  Expected<CameraPath> path = FollowedMotion(request, preset, ExtraMotionS(request.disturbances));
+  Expected<CameraPath> path =
+      FollowedMotion(request, preset, request.speed * ExtraMotionS(request.disturbances));
+  if (path) ApplySpeed(request.speed, &path->poses);
   if (path) WarpTime(request.disturbances, &path->poses);
   if (path && path->poses.size() < 2) {
     return InvalidArgument(
@@ -182,6 +194,7 @@ Status SimulationRequest::Validate() const {
   constexpr double kDay_s = 86400.0;
   FieldChecker check;
   if (duration_s) check.InRange("duration_s", *duration_s, 1e-3, kDay_s);
+  check.InRange("speed", speed, 0.05, 10.0);
   check.InRange("start_s", start_s, 0.0, kDay_s * 365.0);
   check.Require(format == "h5" || format == "bag" || format == "txt", "format",
                 "= '" + format + "' must be h5, bag or txt");

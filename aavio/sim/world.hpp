@@ -45,6 +45,9 @@ struct SimulationRequest {
   std::optional<double> duration_s;  ///< default: the preset's (or the whole trajectory)
   double start_s = 0.0;              ///< offset into a recorded trajectory
   std::uint64_t seed = 1;
+  /// The motion played this many times as fast (0.05–10): the same path in 1/speed of the time,
+  /// for slow and fast versions of a motion. Durations and disturbances are in data time.
+  double speed = 1.0;
   std::string trajectory;               ///< TUM file: follow a recorded camera path (a twin)
   std::string calibration;              ///< ESVO/DSEC calibration replacing the preset's
   std::string body_to_camera = "auto";  ///< identity | driving | auto (driving rule for cars)

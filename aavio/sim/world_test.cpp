@@ -20,6 +20,34 @@ TimeNs At(const SimulationWorld& w, double t_s) {
   return w.spline.t_begin_ns() + SecondsToNs(t_s);
 }
 
+TEST(SimulationWorld, SpeedPlaysTheSamePathFasterOrSlower) {
+  const SimulationWorld plain = World({});
+  for (double speed : {0.5, 2.0}) {
+    SCOPED_TRACE(speed);
+    SimulationRequest request;
+    request.preset = "mini";
+    request.duration_s = 3.0;
+    request.sensor = "ideal";
+    request.speed = speed;
+    Expected<SimulationWorld> w = BuildSimulationWorld(request);
+    ASSERT_TRUE(w.ok()) << w.status().message();
+    // As long in data time; at t it is where the plain motion is at speed·t, moving speed× as fast.
+    EXPECT_NEAR(NsToSeconds(w->spline.t_end_ns() - w->spline.t_begin_ns()), 3.0, 0.01);
+    for (double t : {0.3, 0.6, 1.2}) {
+      EXPECT_LT(
+          (w->spline.Position(At(*w, t)) - plain.spline.Position(At(plain, speed * t))).norm(),
+          1e-3)
+          << t;
+      EXPECT_NEAR(w->spline.LinearVelocity(At(*w, t)).norm(),
+                  speed * plain.spline.LinearVelocity(At(plain, speed * t)).norm(), 1e-2)
+          << t;
+    }
+  }
+  SimulationRequest absurd;
+  absurd.speed = 0.0;
+  EXPECT_NE(absurd.Validate().message().find("speed"), std::string::npos);
+}
+
 TEST(SimulationWorld, AStopBrakesStandsStillAndDrivesOn) {
   const SimulationWorld plain = World({});
   // Stop over 1–2 s: braking 1–1.25 s, standing 1.25–1.75 s, starting 1.75–2 s.
