@@ -310,6 +310,37 @@ std::vector<SimulationPreset> AllPresets() {
 
 }  // namespace
 
+namespace {
+
+template <typename Kind, std::size_t N>
+Expected<Kind> Named(const std::string& name, const std::pair<const char*, Kind> (&table)[N],
+                     const char* what) {
+  std::string known;
+  for (const auto& [n, kind] : table) {
+    if (name == n) return kind;
+    known += (known.empty() ? "" : ", ") + std::string(n);
+  }
+  return InvalidArgument("'" + name + "' is not a " + what + "; one of " + known);
+}
+
+}  // namespace
+
+Expected<SceneKind> SceneKindNamed(const std::string& name) {
+  static constexpr std::pair<const char*, SceneKind> kScenes[] = {
+      {"room", SceneKind::kRoom}, {"office", SceneKind::kOffice}, {"lab", SceneKind::kLab},
+      {"hall", SceneKind::kHall}, {"street", SceneKind::kStreet}, {"planes", SceneKind::kPlanes}};
+  return Named(name, kScenes, "scene");
+}
+
+Expected<MotionKind> MotionKindNamed(const std::string& name) {
+  static constexpr std::pair<const char*, MotionKind> kMotions[] = {
+      {"hand_held", MotionKind::kHandHeld},
+      {"driving", MotionKind::kDriving},
+      {"drone", MotionKind::kDrone},
+      {"sinusoid", MotionKind::kSinusoid}};
+  return Named(name, kMotions, "motion");
+}
+
 std::vector<std::string> SimulationPresetNames() {
   std::vector<std::string> names;
   for (const SimulationPreset& p : AllPresets())

@@ -42,6 +42,12 @@ struct SimulationPreset {
   Expected<geometry::StereoRig> (*rig)() = nullptr;
 };
 
+/// A scene or motion by name, for mixing a preset's sensor with another preset's scene or motion:
+/// room, office, lab, hall, street, planes; hand_held, driving, drone, sinusoid. InvalidArgument
+/// listing the names otherwise.
+Expected<SceneKind> SceneKindNamed(const std::string& name);
+Expected<MotionKind> MotionKindNamed(const std::string& name);
+
 std::vector<std::string> SimulationPresetNames();
 /// NotFound listing the presets for an unknown name.
 Expected<SimulationPreset> GetSimulationPreset(const std::string& name);

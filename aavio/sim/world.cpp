@@ -195,6 +195,12 @@ Status SimulationRequest::Validate() const {
   FieldChecker check;
   if (duration_s) check.InRange("duration_s", *duration_s, 1e-3, kDay_s);
   check.InRange("speed", speed, 0.05, 10.0);
+  if (!scene.empty() && !SceneKindNamed(scene).ok())
+    check.Require(false, "scene", "= " + SceneKindNamed(scene).status().message());
+  if (!motion.empty() && !MotionKindNamed(motion).ok())
+    check.Require(false, "motion", "= " + MotionKindNamed(motion).status().message());
+  check.Require(motion.empty() || trajectory.empty(), "motion",
+                "and a trajectory cannot both be given: the camera follows one of them");
   check.InRange("start_s", start_s, 0.0, kDay_s * 365.0);
   check.Require(format == "h5" || format == "bag" || format == "txt", "format",
                 "= '" + format + "' must be h5, bag or txt");
@@ -227,6 +233,8 @@ Expected<SimulationWorld> BuildSimulationWorld(const SimulationRequest& request)
   if (!sensor) return sensor.status();
   preset->events = sensor->events;
   preset->imu = sensor->imu;
+  if (!request.scene.empty()) preset->scene = *SceneKindNamed(request.scene);
+  if (!request.motion.empty()) preset->motion = *MotionKindNamed(request.motion);
   Expected<geometry::StereoRig> rig = preset->rig();
   if (!request.calibration.empty()) {
     Expected<io::LoadedCalibration> loaded = io::LoadCalibration(request.calibration);

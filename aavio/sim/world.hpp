@@ -48,6 +48,8 @@ struct SimulationRequest {
   /// The motion played this many times as fast (0.05–10): the same path in 1/speed of the time,
   /// for slow and fast versions of a motion. Durations and disturbances are in data time.
   double speed = 1.0;
+  std::string scene;                    ///< a scene by name (SceneKindNamed); empty: the preset's
+  std::string motion;                   ///< a built-in motion by name; empty: the preset's
   std::string trajectory;               ///< TUM file: follow a recorded camera path (a twin)
   std::string calibration;              ///< ESVO/DSEC calibration replacing the preset's
   std::string body_to_camera = "auto";  ///< identity | driving | auto (driving rule for cars)

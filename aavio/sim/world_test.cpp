@@ -48,6 +48,28 @@ TEST(SimulationWorld, SpeedPlaysTheSamePathFasterOrSlower) {
   EXPECT_NE(absurd.Validate().message().find("speed"), std::string::npos);
 }
 
+TEST(SimulationWorld, APresetsSensorTakesAnotherScenesAndMotion) {
+  SimulationRequest request;
+  request.preset = "mini";
+  request.duration_s = 1.0;
+  request.sensor = "ideal";
+  request.scene = "planes";
+  request.motion = "sinusoid";
+  Expected<SimulationWorld> w = BuildSimulationWorld(request);
+  ASSERT_TRUE(w.ok()) << w.status().message();
+  EXPECT_EQ(w->scene.quads().size(), 4u);                         // the planes
+  EXPECT_EQ(w->rig.width(), 160);                                 // the mini preset's sensor
+  EXPECT_GT(w->spline.LinearVelocity(At(*w, 0.0)).norm(), 0.05);  // the sinusoid moves at once
+  request.scene = "moon";
+  EXPECT_NE(BuildSimulationWorld(request).status().message().find("scene = 'moon' is not a scene"),
+            std::string::npos);
+  request.scene = "";
+  request.motion = "sinusoid";
+  request.trajectory = "path.txt";
+  EXPECT_NE(BuildSimulationWorld(request).status().message().find("cannot both be given"),
+            std::string::npos);
+}
+
 TEST(SimulationWorld, AStopBrakesStandsStillAndDrivesOn) {
   const SimulationWorld plain = World({});
   // Stop over 1–2 s: braking 1–1.25 s, standing 1.25–1.75 s, starting 1.75–2 s.

@@ -139,6 +139,10 @@ void RegisterSimulate(CLI::App& app, Context& ctx) {
       ->check(NumberIn(1e-3, 86400.0));
   sub->add_option("--start", request->start_s, "Seconds to skip into --trajectory")
       ->check(DataSeconds());
+  sub->add_option("--scene", request->scene,
+                  "Another preset's scene: room, office, lab, hall, street or planes");
+  sub->add_option("--motion", request->motion,
+                  "Another preset's motion: hand_held, driving, drone or sinusoid");
   sub->add_option("--speed", request->speed,
                   "The motion played FACTOR times as fast (0.05-10; 0.2: slow, 3: fast)")
       ->check(NumberIn(0.05, 10.0));
