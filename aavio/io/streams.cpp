@@ -1,6 +1,7 @@
 #include "aavio/io/streams.hpp"
 
 #include <algorithm>
+#include <cstdint>
 
 #include "aavio/common/format.hpp"
 
@@ -9,11 +10,17 @@ namespace aavio::io {
 template <typename T>
 Status ReorderBuffer<T>::PushOutOfOrder(const T& element, std::string_view where_if_error) {
   if (element.t_ns < floor_ns_) return Status::Ok();
+  // How far behind the newest, without overflow: a corrupt file's stamps may span all of int64,
+  // and the unsigned difference of two int64 is exact when the first is the larger.
+  const bool behind = has_newest_ && element.t_ns < newest_ns_;
+  const std::uint64_t back_ns =
+      behind ? static_cast<std::uint64_t>(newest_ns_) - static_cast<std::uint64_t>(element.t_ns)
+             : 0;
   if (element.t_ns < released_until_ns_ ||
-      (has_newest_ && element.t_ns < newest_ns_ - max_reorder_ns_)) {
+      (behind && back_ns > static_cast<std::uint64_t>(max_reorder_ns_))) {
     return InvalidArgument(std::string(where_if_error) + ": timestamp " +
                            FormatSecondsNs(element.t_ns) + " s goes back " +
-                           StrFormat("%.3f ms", NsToMs(newest_ns_ - element.t_ns)) +
+                           StrFormat("%.3f ms", static_cast<double>(back_ns) * 1e-6) +
                            " behind the newest one, more than the reorder window of " +
                            StrFormat("%.3f ms", NsToMs(max_reorder_ns_)) +
                            "; sort the file by time (or raise the reorder window)");

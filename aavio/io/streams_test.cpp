@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+
 namespace aavio::io {
 namespace {
 
@@ -46,6 +48,19 @@ TEST(ReorderBuffer, RefusesJumpsBackBeyondTheWindow) {
   ASSERT_FALSE(s.ok());
   EXPECT_NE(s.message().find("file.h5: event 2: timestamp"), std::string::npos) << s.message();
   EXPECT_NE(s.message().find("reorder window"), std::string::npos);
+}
+
+TEST(ReorderBuffer, StampsAcrossTheWholeRangeAreRefusedWithoutOverflow) {
+  // A corrupt file: an event at +1.7e18 ns, then one near the most negative stamp.
+  ReorderBuffer<events::Event> buffer(10);
+  ASSERT_TRUE(buffer.Push(At(1744227144742719000), "f: event 0").ok());
+  const Status s = buffer.Push(At(-7479312017869478760), "f: event 1");
+  ASSERT_FALSE(s.ok());
+  EXPECT_NE(s.message().find("reorder window"), std::string::npos) << s.message();
+  ReorderBuffer<events::Event> low(std::numeric_limits<TimeNs>::max());
+  ASSERT_TRUE(low.Push(At(std::numeric_limits<TimeNs>::max()), "f").ok());
+  EXPECT_TRUE(low.Push(At(0), "f").ok());    // exactly the window back
+  EXPECT_FALSE(low.Push(At(-1), "f").ok());  // a nanosecond beyond it
 }
 
 TEST(ReorderBuffer, RefusesElementsOlderThanWhatWasReleased) {
