@@ -6,7 +6,7 @@
 /// so registration has little to follow. τ is kept at least as long as the events at the edges
 /// the map lies on are old: the median edge then shows at e⁻¹ of full scale, whatever the scene's
 /// event density. Measured, not assumed: in the rooms and streets the edges are 6–10 ms old and
-/// τ stays as configured.
+/// τ stays as configured but for their slowest stretches.
 
 #include <Eigen/Core>
 #include <deque>
