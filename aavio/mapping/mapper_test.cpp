@@ -106,6 +106,22 @@ TEST(Mapper, PublishesTheBootstrapThenOnlyFullFifos) {
 
 // bootstrap.method = block_matching: the cycle's static stereo on the first observation, every
 // point refined and old enough to survive the first cleanings.
+// A first map: min_points in any scene, or fewer where they cover enough of the edges in view.
+TEST(BootstrapConfig, AcceptsWhatTheSceneOffers) {
+  BootstrapConfig b;  // 500 points, or half the samples and at least 50
+  EXPECT_TRUE(b.Accepts(500, 5000));   // the count, however many samples
+  EXPECT_FALSE(b.Accepts(499, 5000));  // neither the count nor half the samples
+  EXPECT_TRUE(b.Accepts(82, 107));     // a sparse scene: 77 % of its samples
+  EXPECT_FALSE(b.Accepts(53, 107));    // under half of them
+  EXPECT_FALSE(b.Accepts(49, 60));     // most of too few samples: under the registration floor
+  b.min_coverage = 0.0;                // the reference codes: the count alone
+  EXPECT_FALSE(b.Accepts(82, 107));
+  const std::string why = b.Refusal("SGM", 82, 107);
+  EXPECT_NE(why.find("SGM bootstrap found 82 points at the 107 edge samples"), std::string::npos)
+      << why;
+  EXPECT_NE(why.find("mapping.bootstrap.min_coverage"), std::string::npos) << why;
+}
+
 TEST(Mapper, BootstrapsByBlockMatching) {
   const RectifiedStereo stereo = testing::SmallStereo();
   const std::shared_ptr<events::Observation> obs = PlaneObservation();

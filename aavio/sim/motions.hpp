@@ -17,7 +17,7 @@ std::vector<geometry::StampedPose> DroneMotion(double duration_s, std::uint64_t 
 
 /// Smooth analytic 6-DoF motion, unlike the random-walk ones: each axis one sinusoid (periods
 /// 3–6 s, random phases; ±0.25 m across, ±0.1 m vertically, ±0.2 m in depth, ±5–8° of each
-/// rotation), already moving at t = 0; about 0.3 m/s and 15 °/s.
+/// rotation), already moving at t = 0; 0.3–0.45 m/s on average, up to 5–17 °/s per axis.
 std::vector<geometry::StampedPose> SinusoidMotion(double duration_s, std::uint64_t seed);
 
 /// Gravity in the world frame of these motions [m/s²].
