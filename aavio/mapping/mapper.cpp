@@ -145,10 +145,29 @@ void Mapper::Publish(const DepthMap& map, bool confirmed) {
   local_map_ = std::move(local);
 }
 
-Status Mapper::Initialize(const PosedObservation& now) {
-  const events::Observation& obs = *now.obs;
-  std::vector<DepthPoint> points;
-  if (config_.bootstrap.method == BootstrapMethod::kBlockMatching) {
+Status Mapper::Initialize(const PosedObservation& now, bool small_map_ok) {
+  Expected<std::vector<DepthPoint>> points = Bootstrap(*now.obs);
+  if (!points) return points.status();
+  if (!small_map_ok && points->size() < static_cast<std::size_t>(config_.bootstrap.min_points)) {
+    return FailedPrecondition(StrFormat(
+        "the bootstrap found %zu points, fewer than mapping.bootstrap.min_points = %d: a smaller "
+        "first map waits until the IMU shows the camera moving (a still camera's noise can give "
+        "one)",
+        points->size(), config_.bootstrap.min_points));
+  }
+  fusion_.Clear();
+  DepthMap map(stereo_, now.T_world_obs, now.obs->t_ns);
+  for (const DepthPoint& p : *points)
+    map.InsertNaive(p);
+  fusion_.Add(StereoKind::kStatic, {now.obs->t_ns, now.T_world_obs, std::move(*points)});
+  Publish(map, /*confirmed=*/true);
+  initialized_ = true;
+  return Status::Ok();
+}
+
+Expected<std::vector<DepthPoint>> Mapper::Bootstrap(const events::Observation& obs) const {
+  const BootstrapConfig& bootstrap = config_.bootstrap;
+  if (bootstrap.method == BootstrapMethod::kBlockMatching) {
     const std::vector<events::EdgeSample> samples = MappingSamples(obs, stereo_, config_);
     std::vector<Eigen::Vector2f> positions;
     for (const events::EdgeSample& s : samples)
@@ -158,32 +177,20 @@ Status Mapper::Initialize(const PosedObservation& now) {
     const std::vector<Match> matches =
         MatchStatic({left, right, valid_mask_}, positions, stereo_, config_.static_stereo,
                     config_.inv_depth_range());
-    points =
+    std::vector<DepthPoint> points =
         RefineDepths({left, right, nullptr, nullptr, {}}, matches, stereo_,
                      config_.depth_refinement, config_.temporal_stereo, config_.inv_depth_range());
-    if (!config_.bootstrap.Accepts(points.size(), samples.size()))
-      return FailedPrecondition(
-          config_.bootstrap.Refusal("block-matching", points.size(), samples.size()));
+    if (!bootstrap.Accepts(points.size(), samples.size()))
+      return FailedPrecondition(bootstrap.Refusal("block-matching", points.size(), samples.size()));
     for (DepthPoint& p : points)
       p.age = kMinAge;  // survives the first cleanings, as SGM points
-  } else {
-    std::vector<Eigen::Vector2f> positions;
-    for (const events::EdgeSample& s : obs.samples)
-      positions.emplace_back(s.u, s.v);
-    Expected<std::vector<DepthPoint>> sgm =
-        BootstrapWithSgm(obs.ts_left, obs.ts_right, positions, stereo_, config_.bootstrap,
-                         config_.depth_refinement.student_t_nu, config_.inv_depth_range());
-    if (!sgm) return sgm.status();
-    points = std::move(*sgm);
+    return points;
   }
-  fusion_.Clear();
-  DepthMap map(stereo_, now.T_world_obs, obs.t_ns);
-  for (const DepthPoint& p : points)
-    map.InsertNaive(p);
-  fusion_.Add(StereoKind::kStatic, {obs.t_ns, now.T_world_obs, std::move(points)});
-  Publish(map, /*confirmed=*/true);
-  initialized_ = true;
-  return Status::Ok();
+  std::vector<Eigen::Vector2f> positions;
+  for (const events::EdgeSample& s : obs.samples)
+    positions.emplace_back(s.u, s.v);
+  return BootstrapWithSgm(obs.ts_left, obs.ts_right, positions, stereo_, bootstrap,
+                          config_.depth_refinement.student_t_nu, config_.inv_depth_range());
 }
 
 Status Mapper::Update(const PosedObservation& now, const PosedObservation* partner,

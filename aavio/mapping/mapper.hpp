@@ -89,7 +89,10 @@ class Mapper {
 
   bool initialized() const { return initialized_; }
   /// SGM on the observation's TS pair at its pose; FailedPrecondition if too few points.
-  Status Initialize(const PosedObservation& now);
+  /// `small_map_ok` false refuses maps under `bootstrap.min_points` whatever their coverage
+  /// (the odometry's choice while the IMU does not show the camera moving: a still camera's
+  /// noise can give a small map).
+  Status Initialize(const PosedObservation& now, bool small_map_ok = true);
   /// A mapping cycle; `partner` may be null (no temporal stereo this cycle), `check` is the
   /// cross-check partner (null: temporal matches are kept unchecked).
   Status Update(const PosedObservation& now, const PosedObservation* partner,
@@ -111,6 +114,8 @@ class Mapper {
   LocalMapPtr local_map() const { return local_map_; }
 
  private:
+  /// The first map's points, or why there are too few.
+  Expected<std::vector<DepthPoint>> Bootstrap(const events::Observation& obs) const;
   void Publish(const DepthMap& map, bool confirmed);
 
   RectifiedStereo stereo_;

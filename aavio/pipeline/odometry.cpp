@@ -179,6 +179,7 @@ Status Odometry::Tick(TimeNs t_ns, int skipped_ticks) {
   }
 
   const std::vector<imu::ImuSample> window = ImuWindow(t_ns);
+  motion_evidence_.Add(window);
   const tracking::TrackingResult tracked =
       tracker_.Track(*obs, rectification_.left.valid_mask, window);
   tick.T_world_cam = tracked.T_world_cur;
@@ -196,8 +197,10 @@ Status Odometry::Tick(TimeNs t_ns, int skipped_ticks) {
   const mapping::PosedObservation now{obs, tracked.T_world_cur};
 
   if (!mapper_.initialized()) {
-    // Bootstrap (SGM) on this tick at the current pose; too few points: try the next tick.
-    const Status init = mapper_.Initialize(now);
+    // Bootstrap (SGM) on this tick at the current pose; too few points: try the next tick. A
+    // small first map needs the IMU to show motion, if there is an IMU.
+    const bool imu_used = config_.imu.mode != imu::ImuMode::kOff && imu_seen_;
+    const Status init = mapper_.Initialize(now, !imu_used || motion_evidence_.Moving());
     if (!init.ok() && init.code() != StatusCode::kFailedPrecondition) return init;
     if (!init.ok()) tick.bootstrap_failure = init.message();
     if (init.ok()) {

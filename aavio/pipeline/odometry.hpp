@@ -30,6 +30,7 @@
 
 #include "aavio/events/representation_builder.hpp"
 #include "aavio/geometry/rectification.hpp"
+#include "aavio/imu/motion_evidence.hpp"
 #include "aavio/mapping/mapper.hpp"
 #include "aavio/pipeline/odometry_config.hpp"
 #include "aavio/tracking/edge_age.hpp"
@@ -136,6 +137,7 @@ class Odometry {
   TimeNs imu_offset_ns_;            // t_imu − t_cam
   TimeNs last_t_end_ns_;            // all data is in up to here
   bool imu_seen_ = false;           // any IMU sample in the input so far
+  imu::MotionEvidence motion_evidence_;  // for the first map: is the camera moving?
   TimeNs tick_ns_, next_tick_ns_;
   TimeNs last_tick_ns_;   // the last tick run (the start before the first)
   TimeNs cycle_ns_;       // mapping period: a whole number of ticks
