@@ -25,7 +25,7 @@ void BM_RenderFrame(benchmark::State& state, const char* preset_name) {
   sim::RenderedImage image;
   std::size_t k = 0;
   for (auto _ : state) {
-    renderer.Render(scene, poses[(k++ * 97) % poses.size()].T_world_body, &image);
+    renderer.Render(scene, poses[(k++ * 97) % poses.size()].T_world_body, 0, &image);
     benchmark::DoNotOptimize(image.intensity.data());
   }
   state.SetItemsProcessed(state.iterations() * rig.width() * rig.height());

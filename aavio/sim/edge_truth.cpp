@@ -44,7 +44,7 @@ cv::Mat EdgeLabels(const RenderedImage& image, const EdgeTruthConfig& config, do
 cv::Mat EdgeTruthMask(const SimulationWorld& world, TimeNs t_ns, const EdgeTruthConfig& config) {
   const Renderer renderer(world.rig.left());
   RenderedImage image;
-  renderer.Render(world.scene, world.T_world_camera(0, t_ns), &image);
+  renderer.Render(world.scene, world.T_world_camera(0, t_ns), t_ns, &image);
   cv::Mat edges = EdgeLabels(image, config) > 0;
   if (config.tolerance_px > 0) {
     const int k = 2 * config.tolerance_px + 1;

@@ -28,13 +28,20 @@ StereoEventSimulation::StereoEventSimulation(const SimulationWorld& world, std::
           EventGenerator(world.rig.width(), world.rig.height(), world.preset.events,
                          seed * 2 + 12)},
       f_px_((world.rig.left().intrinsics().fx + world.rig.left().intrinsics().fy) / 2.0) {
+  constexpr double kStepsPerFlickerPeriod = 12.0;
+  for (const Quad& q : world.scene.quads()) {
+    if (q.flicker_hz > 0.0)
+      max_step_s_ = std::min(max_step_s_, 1.0 / (kStepsPerFlickerPeriod * q.flicker_hz));
+    object_speed_mps_ = std::max(object_speed_mps_, q.velocity_mps.norm());
+  }
   Start(world.spline.t_begin_ns());
 }
 
 void StereoEventSimulation::Start(TimeNs t_begin_ns) {
   t_ns_ = t_begin_ns;
   for (int side = 0; side < 2; ++side) {
-    renderers_[side].Render(world_.scene, world_.T_world_camera(side, t_ns_), &images_[side]);
+    renderers_[side].Render(world_.scene, world_.T_world_camera(side, t_ns_), t_ns_,
+                            &images_[side]);
     generators_[side].Reset(images_[side].intensity, t_ns_);
   }
 }
@@ -44,11 +51,13 @@ TimeNs StereoEventSimulation::Step(TimeNs t_end_ns, std::vector<events::Event>* 
   const MotionSpline& spline = world_.spline;
   const double speed_px =
       f_px_ * (spline.AngularVelocity(t_ns_).norm() +
-               spline.LinearVelocity(t_ns_).norm() / NearDepth(images_[0].depth_m));
-  const double dt_s = std::clamp(1.0 / std::max(speed_px, 1e-6), 50e-6, 5e-3);
+               (spline.LinearVelocity(t_ns_).norm() + object_speed_mps_) /
+                   NearDepth(images_[0].depth_m));
+  const double dt_s = std::clamp(1.0 / std::max(speed_px, 1e-6), 50e-6, max_step_s_);
   const TimeNs t_next = std::min(t_end_ns, t_ns_ + SecondsToNs(dt_s));
   auto step = [&](int side, std::vector<events::Event>* out) {
-    renderers_[side].Render(world_.scene, world_.T_world_camera(side, t_next), &images_[side]);
+    renderers_[side].Render(world_.scene, world_.T_world_camera(side, t_next), t_next,
+                            &images_[side]);
     generators_[side].Step(images_[side].intensity, t_next, out);
   };
   std::thread right_thread(step, 1, right);

@@ -4,8 +4,13 @@
 #include <cmath>
 
 #include "aavio/common/format.hpp"
+#include "aavio/sim/path_smoothing.hpp"
 
 namespace aavio::sim {
+
+namespace {
+constexpr double kSmoothingMargin_s = 2.0;
+}  // namespace
 
 Eigen::Matrix3d DrivingBodyToCamera(const std::vector<geometry::StampedPose>& poses) {
   // Forward: the mean direction of travel, in the body frame (robust: the car moves forward).
@@ -60,8 +65,17 @@ Expected<CameraPath> CameraPathFromRecording(const std::vector<geometry::Stamped
   }
   const TimeNs start = recorded.front().t_ns + SecondsToNs(start_s);
   const TimeNs end = duration_s > 0.0 ? start + SecondsToNs(duration_s) : recorded.back().t_ns;
-  std::vector<geometry::StampedPose> cropped;
+  // The measurement noise is removed over the crop and a margin, so that the crop's ends are
+  // smoothed like its middle.
+  const TimeNs margin = SecondsToNs(kSmoothingMargin_s);
+  std::vector<geometry::StampedPose> around;
   for (const geometry::StampedPose& p : recorded) {
+    if (p.t_ns >= start - margin && p.t_ns <= end + margin) around.push_back(p);
+  }
+  Expected<SmoothedPath> smoothed = SmoothRecordedPath(around);
+  if (!smoothed) return smoothed.status();
+  std::vector<geometry::StampedPose> cropped;
+  for (const geometry::StampedPose& p : smoothed->poses) {
     if (p.t_ns >= start && p.t_ns <= end) cropped.push_back(p);
   }
   if (cropped.size() < 2) {
@@ -78,6 +92,10 @@ Expected<CameraPath> CameraPathFromRecording(const std::vector<geometry::Stamped
   const double seconds = NsToSeconds(recorded.back().t_ns - recorded.front().t_ns);
   const bool vehicle = length > 20.0 && length / seconds > 2.0;
   CameraPath path;
+  path.smoothing = StrFormat(
+      "measurement noise %.2f mm, %.3f deg rms removed (residual %.2f mm, %.3f deg)",
+      1e3 * smoothed->noise.position_m, smoothed->noise.rotation_rad * 180.0 / M_PI,
+      1e3 * smoothed->position_residual_m, smoothed->rotation_residual_rad * 180.0 / M_PI);
   Eigen::Matrix3d R_body_cam = Eigen::Matrix3d::Identity();
   if (mode == "driving" || (mode == "auto" && vehicle)) {
     R_body_cam = DrivingBodyToCamera(recorded);

@@ -1,6 +1,7 @@
 #pragma once
-/// Recorded camera paths as simulator input ("twins" of real sequences): cropping, the
-/// body → camera rotation, and expressing the path relative to its first camera pose.
+/// Recorded camera paths as simulator input ("twins" of real sequences): cropping, removing the
+/// measurement noise (path_smoothing.hpp), the body → camera rotation, and expressing the path
+/// relative to its first camera pose.
 ///
 /// The driving rule (for vehicles, whose recorded body frame need not be the camera's — DSEC's is
 /// the camera turned about its optical axis, shared/data/README.md) picks the camera orientation
@@ -23,6 +24,7 @@ struct CameraPath {
   std::vector<geometry::StampedPose> poses;  ///< camera in the world of its first pose
   Eigen::Vector3d gravity_world;             ///< [m/s²], in that world
   std::string body_to_camera = "identity";   ///< what was applied, in words
+  std::string smoothing;                     ///< the measurement noise removed, in words
 };
 
 /// R_body_cam of the driving rule.

@@ -74,7 +74,8 @@ Renderer::Renderer(const geometry::CameraModel& camera)
 }
 
 void Renderer::Render(const Scene& scene, const geometry::RigidTransform& T_world_cam,
-                      RenderedImage* out) const {
+                      TimeNs t_ns, RenderedImage* out) const {
+  const double t_s = NsToSeconds(t_ns - scene.time_origin_ns);
   const std::size_t n = nx_.size();
   out->width = width_;
   out->height = height_;
@@ -89,7 +90,7 @@ void Renderer::Render(const Scene& scene, const geometry::RigidTransform& T_worl
   const std::vector<Quad>& quads = scene.quads();
   for (std::size_t q = 0; q < quads.size(); ++q) {
     const Quad& quad = quads[q];
-    const Eigen::Vector3d o = T_cam_world * quad.origin;
+    const Eigen::Vector3d o = T_cam_world * quad.OriginAt(t_s);
     const Eigen::Vector3d u = T_cam_world.R * quad.edge_u;
     const Eigen::Vector3d v = T_cam_world.R * quad.edge_v;
     const Eigen::Vector3d corners[4] = {o, o + u, o + u + v, o + v};
@@ -153,8 +154,10 @@ void Renderer::Render(const Scene& scene, const geometry::RigidTransform& T_worl
     const Eigen::Vector3d& normal = normals_[q];
     const double cos_incidence = std::abs(normal.x() * x + normal.y() * y + normal.z()) / ray_norm;
     const double footprint = z * ray_norm * pixel_angle_ / std::max(cos_incidence, 0.1);
-    out->intensity[i] = static_cast<float>(quad.texture.Albedo(
-        static_cast<double>(tex_u_[i]), static_cast<double>(tex_v_[i]), footprint));
+    out->intensity[i] = static_cast<float>(
+        quad.texture.Albedo(static_cast<double>(tex_u_[i]), static_cast<double>(tex_v_[i]),
+                            footprint) *
+        quad.RadianceAt(t_s));
     out->depth_m[i] = static_cast<float>(z);
   }
 }

@@ -29,7 +29,9 @@ class Renderer {
   /// Precomputes the ray of every pixel (undistortion happens once, here) and the grid.
   explicit Renderer(const geometry::CameraModel& camera);
 
-  void Render(const Scene& scene, const geometry::RigidTransform& T_world_cam,
+  /// The scene as seen at `t_ns` (moving quads displaced and light sources flickering from
+  /// the scene's time origin; a static, steady scene looks the same at every time).
+  void Render(const Scene& scene, const geometry::RigidTransform& T_world_cam, TimeNs t_ns,
               RenderedImage* out) const;
 
   int width() const { return width_; }

@@ -7,12 +7,18 @@
 
 namespace aavio::sim {
 
+double Quad::RadianceAt(double t_s) const {
+  if (flicker_hz <= 0.0) return 1.0;
+  return 1.0 - flicker_depth * 0.5 * (1.0 + std::cos(2.0 * M_PI * flicker_hz * t_s + flicker_phase_rad));
+}
+
 void Scene::AddQuad(const Quad& quad) {
   quads_.push_back(quad);
 }
 
 void Scene::AddBox(const geometry::RigidTransform& T, const Eigen::Vector3d& size,
-                   const std::vector<Texture>& textures, bool with_bottom) {
+                   const std::vector<Texture>& textures, bool with_bottom,
+                   const Eigen::Vector3d& velocity_mps) {
   const Eigen::Vector3d h = size / 2.0;
   const Eigen::Matrix3d& R = T.R;
   const Eigen::Vector3d ex = R.col(0) * size.x(), ey = R.col(1) * size.y(),
@@ -29,6 +35,7 @@ void Scene::AddBox(const geometry::RigidTransform& T, const Eigen::Vector3d& siz
   for (const auto& f : faces) {
     Quad q{f[0], f[1], f[2], textures.empty() ? Texture{} : textures[k++ % textures.size()]};
     q.texture.seed += k;
+    q.velocity_mps = velocity_mps;
     AddQuad(q);
   }
 }
@@ -38,6 +45,7 @@ void Scene::Transform(const geometry::RigidTransform& T) {
     q.origin = T * q.origin;
     q.edge_u = T.R * q.edge_u;
     q.edge_v = T.R * q.edge_v;
+    q.velocity_mps = T.R * q.velocity_mps;
   }
   Build();
 }

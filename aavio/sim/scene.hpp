@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "aavio/common/time.hpp"
 #include "aavio/geometry/rigid_transform.hpp"
 #include "aavio/sim/texture.hpp"
 
@@ -13,11 +14,25 @@ namespace aavio::sim {
 
 /// origin + s·edge_u + t·edge_v for s, t in [0, 1]; the edges are perpendicular. Texture
 /// coordinates are metres along the edges from the origin.
+///
+/// Two world effects live on quads: a moving object's faces translate with `velocity_mps` (the
+/// origin is where they are at Scene::time_origin_ns), and a light source's radiance flickers:
+/// its albedo times 1 − depth · (1 + cos(2π f t + φ)) / 2, between (1 − depth) and 1 of it.
 struct Quad {
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();
   Eigen::Vector3d edge_u = Eigen::Vector3d::UnitX();
   Eigen::Vector3d edge_v = Eigen::Vector3d::UnitY();
   Texture texture;
+  Eigen::Vector3d velocity_mps = Eigen::Vector3d::Zero();  ///< world frame; 0 = static
+  double flicker_hz = 0.0;     ///< 0 = steady
+  double flicker_depth = 0.0;  ///< in [0, 1)
+  double flicker_phase_rad = 0.0;
+
+  bool moves() const { return !velocity_mps.isZero(); }
+  /// Where the origin is at `t_s` seconds after the scene's time origin.
+  Eigen::Vector3d OriginAt(double t_s) const { return origin + velocity_mps * t_s; }
+  /// The radiance factor at `t_s` seconds after the scene's time origin (1 when steady).
+  double RadianceAt(double t_s) const;
 };
 
 struct Hit {
@@ -31,19 +46,23 @@ class Scene {
  public:
   void AddQuad(const Quad& quad);
   /// A box of size (x, y, z) [m] centred at T_world_box's origin; `textures` are used in turn
-  /// for its faces; `with_bottom` false leaves out the face at −z (boxes standing on a floor).
+  /// for its faces; `with_bottom` false leaves out the face at −z (boxes standing on a floor);
+  /// a moving box's faces share `velocity_mps`.
   void AddBox(const geometry::RigidTransform& T_world_box, const Eigen::Vector3d& size,
-              const std::vector<Texture>& textures, bool with_bottom = true);
+              const std::vector<Texture>& textures, bool with_bottom = true,
+              const Eigen::Vector3d& velocity_mps = Eigen::Vector3d::Zero());
   /// Builds the BVH; call after the last Add and before Intersect.
   void Build();
   /// Moves every quad by T_new_old (p_new = T · p_old) and rebuilds the BVH.
   void Transform(const geometry::RigidTransform& T_new_old);
 
-  /// Nearest hit of the ray o + s·dir (dir of unit length, s > 1e-6); false if none.
+  /// Nearest hit of the ray o + s·dir (dir of unit length, s > 1e-6); false if none. Moving
+  /// quads are where they are at the time origin.
   bool Intersect(const Eigen::Vector3d& o, const Eigen::Vector3d& dir, Hit* hit) const;
 
   const std::vector<Quad>& quads() const { return quads_; }
   double sky_albedo = 0.45;  ///< what rays that hit nothing see
+  TimeNs time_origin_ns = 0;  ///< the time moving quads' origins and flicker phases refer to
 
  private:
   struct Node {

@@ -32,7 +32,7 @@ TEST(Renderer, DepthOfAKnownPlaneIsAnalytic) {
   scene.AddQuad(Plane(n * d, u, v, 100.0));
   scene.Build();
   RenderedImage image;
-  Renderer(camera).Render(scene, {}, &image);
+  Renderer(camera).Render(scene, {}, 0, &image);
   int checked = 0;
   for (int y = 0; y < camera.height(); y += 3) {
     for (int x = 0; x < camera.width(); x += 3) {
@@ -53,7 +53,7 @@ TEST(Renderer, PoseMovesTheWorldNotTheCamera) {
   const geometry::CameraModel camera = testing::DsecLeft().Model();
   RenderedImage image;
   // Camera 1.5 m forward: the fronto-parallel plane is 2.5 m away at every pixel.
-  Renderer(camera).Render(scene, {Eigen::Matrix3d::Identity(), {0, 0, 1.5}}, &image);
+  Renderer(camera).Render(scene, {Eigen::Matrix3d::Identity(), {0, 0, 1.5}}, 0, &image);
   for (float z : image.depth_m)
     EXPECT_NEAR(z, 2.5f, 1e-5f);
 }
@@ -171,7 +171,7 @@ TEST(Renderer, RasterisationMatchesRayCasting) {
         geometry::ExpSO3(Eigen::Vector3d(0.2 * trial, -0.1, 0.05)),
         Eigen::Vector3d(0.3 * trial, 0, -1.0));
     RenderedImage image;
-    renderer.Render(scene, T_world_cam, &image);
+    renderer.Render(scene, T_world_cam, 0, &image);
     int compared = 0, differ = 0;
     for (int y = 0; y < camera.height(); ++y) {
       for (int x = 0; x < camera.width(); ++x) {

@@ -55,14 +55,18 @@ std::vector<const char*> SimulationOutputs() {
 
 Status WriteScene(const std::string& path, const Scene& scene) {
   std::string text =
-      "# quads: origin(3) edge_u(3) edge_v(3) pattern cell_m angle_rad contrast mean seed\n";
+      "# quads: origin(3) edge_u(3) edge_v(3) pattern cell_m angle_rad contrast mean seed"
+      " velocity_mps(3) flicker_hz flicker_depth flicker_phase_rad\n"
+      "# a moving quad's origin is where it is at the first pose's time\n";
   for (const Quad& q : scene.quads()) {
-    text += StrFormat("%.6f %.6f %.6f %.6f %.6f %.6f %.6f %.6f %.6f %d %.6f %.6f %.4f %.4f %llu\n",
-                      q.origin.x(), q.origin.y(), q.origin.z(), q.edge_u.x(), q.edge_u.y(),
-                      q.edge_u.z(), q.edge_v.x(), q.edge_v.y(), q.edge_v.z(),
-                      static_cast<int>(q.texture.pattern), q.texture.cell_m, q.texture.angle_rad,
-                      q.texture.contrast, q.texture.mean,
-                      static_cast<unsigned long long>(q.texture.seed));
+    text += StrFormat(
+        "%.6f %.6f %.6f %.6f %.6f %.6f %.6f %.6f %.6f %d %.6f %.6f %.4f %.4f %llu %.4f %.4f %.4f "
+        "%.1f %.3f %.4f\n",
+        q.origin.x(), q.origin.y(), q.origin.z(), q.edge_u.x(), q.edge_u.y(), q.edge_u.z(),
+        q.edge_v.x(), q.edge_v.y(), q.edge_v.z(), static_cast<int>(q.texture.pattern),
+        q.texture.cell_m, q.texture.angle_rad, q.texture.contrast, q.texture.mean,
+        static_cast<unsigned long long>(q.texture.seed), q.velocity_mps.x(), q.velocity_mps.y(),
+        q.velocity_mps.z(), q.flicker_hz, q.flicker_depth, q.flicker_phase_rad);
   }
   return io::WriteTextFile(path, text);
 }
@@ -187,6 +191,8 @@ Expected<SimulationReport> Simulate(const SimulationRequest& request,
   std::vector<std::int64_t> pixel_counts(static_cast<std::size_t>(rig.width()) * rig.height(), 0);
   SimulationReport report;
   report.body_to_camera = world.motion.body_to_camera;
+  report.path_smoothing = world.motion.smoothing;
+  report.world_effects = world.world_effects.Describe();
 
   // Ground-truth depth: rectified left camera at a fixed rate, as DSEC-style disparity PNGs.
   const TimeNs depth_step = SecondsToNs(1.0 / preset.depth_rate_hz);
@@ -194,7 +200,7 @@ Expected<SimulationReport> Simulate(const SimulationRequest& request,
   std::string depth_stamps = "# t[s] index\n";
   auto write_depth = [&](TimeNs t) -> Status {
     RenderedImage d;
-    depth_renderer.Render(world.scene, spline.Pose(t), &d);
+    depth_renderer.Render(world.scene, spline.Pose(t), t, &d);
     cv::Mat disparity(rig.height(), rig.width(), CV_16UC1, cv::Scalar(0));
     cv::Mat depth(rig.height(), rig.width(), CV_32FC1, cv::Scalar(0));
     const double offset = rig.cx_left() - rig.cx_right();

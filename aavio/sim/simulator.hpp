@@ -32,6 +32,8 @@ struct SimulationReport {
   double pixel_rate_median_hz = 0.0;  ///< events per pixel per second, left camera
   double pixel_rate_p99_hz = 0.0;
   std::string body_to_camera;  ///< the rotation that was used, in words
+  std::string path_smoothing;  ///< the recorded path's measurement noise removed, in words
+  std::string world_effects;   ///< what the world effects added, in words
   std::string sequence_yaml;
 };
 

@@ -119,13 +119,14 @@ TEST(Simulator, PointAtKnownDepthGivesTheRigsRowAndDisparity) {
   int count[2] = {0, 0};
   for (int side = 0; side < 2; ++side) {
     RenderedImage image;
-    renderers[side].Render(scene, pose(side, {}), &image);
+    renderers[side].Render(scene, pose(side, {}), 0, &image);
     generators[side].Reset(image.intensity, 0);
     std::vector<events::Event> events;
     // A small vertical shake: the square's horizontal edges fire, staying at the same depth.
     for (int k = 1; k <= 40; ++k) {
       const double dy = 0.004 * std::sin(k * 0.3);
-      renderers[side].Render(scene, pose(side, {Eigen::Matrix3d::Identity(), {0, dy, 0}}), &image);
+      renderers[side].Render(scene, pose(side, {Eigen::Matrix3d::Identity(), {0, dy, 0}}), 0,
+                             &image);
       generators[side].Step(image.intensity, k * kNsPerMs, &events);
     }
     const geometry::RectificationMaps& maps = side == 0 ? rect.left : rect.right;

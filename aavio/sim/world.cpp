@@ -197,6 +197,8 @@ Status SimulationRequest::Validate() const {
   check.InRange("speed", speed, 0.05, 10.0);
   if (!scene.empty() && !SceneKindNamed(scene).ok())
     check.Require(false, "scene", "= " + SceneKindNamed(scene).status().message());
+  if (Status names = CheckWorldEffectNames(world_effects); !names.ok())
+    check.Require(false, "world_effects", "= " + names.message());
   if (!motion.empty() && !MotionKindNamed(motion).ok())
     check.Require(false, "motion", "= " + MotionKindNamed(motion).status().message());
   check.Require(motion.empty() || trajectory.empty(), "motion",
@@ -254,9 +256,14 @@ Expected<SimulationWorld> BuildSimulationWorld(const SimulationRequest& request)
   Scene scene = BuildScene(preset->scene, motion->poses, motion->gravity_world,
                            preset->camera_height_m, request.seed);
   if (preset->scene != SceneKind::kStreet) scene.Transform(T_world_canonical);
-  return SimulationWorld{
-      std::move(*preset), std::move(*sensor), std::move(*rig),  std::move(*calibration_rig),
-      std::move(*motion), std::move(*spline), std::move(scene), T_world_canonical};
+  const geometry::CameraIntrinsics& K = rig->left().intrinsics();
+  const WorldEffectPlacement placement{motion->poses, motion->gravity_world,
+                                       std::atan(0.5 * K.width / K.fx),
+                                       preset->scene == SceneKind::kStreet, request.seed};
+  const WorldEffectsAdded added = AddWorldEffects(request.world_effects, placement, &scene);
+  return SimulationWorld{std::move(*preset),        std::move(*sensor), std::move(*rig),
+                         std::move(*calibration_rig), std::move(*motion), std::move(*spline),
+                         std::move(scene),          added,              T_world_canonical};
 }
 
 }  // namespace aavio::sim

@@ -13,6 +13,7 @@
 #include "aavio/sim/presets.hpp"
 #include "aavio/sim/recorded_motion.hpp"
 #include "aavio/sim/scene.hpp"
+#include "aavio/sim/world_effects.hpp"
 #include "aavio/sim/sensor_model.hpp"
 
 namespace aavio::sim {
@@ -57,6 +58,7 @@ struct SimulationRequest {
   std::string sensor = "typical";         ///< ideal | typical | harsh | a sensor YAML file
   std::vector<std::string> effects;       ///< only these effects of the sensor (empty: all)
   std::vector<Disturbance> disturbances;  ///< darkness, a camera off, too fast a motion, a stop
+  std::vector<std::string> world_effects;  ///< flicker, moving_objects (world_effects.hpp)
 
   /// Errors name the field and its bounds (durations up to a day).
   Status Validate() const;
@@ -69,7 +71,8 @@ struct SimulationWorld {
   geometry::StereoRig calibration_rig;  ///< what the sequence's calibration says (with errors)
   CameraPath motion;
   MotionSpline spline;  ///< the rectified left camera in the world
-  Scene scene;
+  Scene scene;  ///< with the world effects' lights and moving objects
+  WorldEffectsAdded world_effects;
   /// The level scene frame (x right, y along gravity, z forward) in the world.
   geometry::RigidTransform T_world_canonical;
 

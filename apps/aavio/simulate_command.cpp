@@ -112,7 +112,11 @@ int RunSimulate(const sim::SimulationRequest& request, bool quiet_flag, Context&
       static_cast<long long>(r.dropped_events), static_cast<long long>(r.render_steps),
       static_cast<long long>(r.imu_samples), static_cast<long long>(r.depth_maps),
       r.pixel_rate_median_hz, r.pixel_rate_p99_hz);
-  if (!request.trajectory.empty()) ctx.out << "body to camera: " << r.body_to_camera << "\n";
+  if (!request.world_effects.empty()) ctx.out << "world effects: " << r.world_effects << "\n";
+  if (!request.trajectory.empty()) {
+    ctx.out << "recorded path: " << r.path_smoothing << "\n";
+    ctx.out << "body to camera: " << r.body_to_camera << "\n";
+  }
   ctx.out << "wrote " << r.sequence_yaml << "\n";
   return kExitOk;
 }
@@ -163,6 +167,14 @@ void RegisterSimulate(CLI::App& app, Context& ctx) {
   sub->add_option(
          "--effects", request->effects,
          "Only these effects of the sensor, the rest ideal (comma-separated): " + effect_names)
+      ->delimiter(',');
+  std::string world_effect_names;
+  for (const sim::WorldEffect& e : sim::WorldEffects())
+    world_effect_names += (world_effect_names.empty() ? "" : "; ") + std::string(e.name) + ": " +
+                          e.description;
+  sub->add_option("--world-effects", request->world_effects,
+                  "What the world adds to a static, steady scene (comma-separated): " +
+                      world_effect_names)
       ->delimiter(',');
   auto disturbances = std::make_shared<std::vector<std::pair<DisturbanceOption, std::string>>>();
   for (const DisturbanceOption& option : kDisturbanceOptions) {
