@@ -39,10 +39,12 @@ void DepthFusion::Add(StereoKind kind, DepthBatch batch) {
 }
 
 bool DepthFusion::full() const {
-  // const_frames: max_frames batches; const_points: the point budget is reached. (The reference
-  // tests the frame count for both, so with const_points and small batches it never cleans.)
-  if (config_.strategy == FusionStrategy::kConstFrames)
-    return static_cast<int>(static_.size()) >= config_.max_frames;
+  // const_frames: max_frames batches; const_points: the point budget is reached, or (aavio)
+  // max_frames batches where the scene gives too few points to reach it. (The reference tests
+  // the frame count for both, so with const_points and small batches it never cleans.)
+  const bool frames = static_cast<int>(static_.size()) >= config_.max_frames;
+  if (config_.strategy == FusionStrategy::kConstFrames) return frames;
+  if (config_.full_at_max_frames && frames) return true;
   std::size_t points = 0;
   for (const DepthBatch& b : static_)
     points += b.points.size();
@@ -50,7 +52,7 @@ bool DepthFusion::full() const {
 }
 
 bool DepthFusion::ready_to_publish() const {
-  if (config_.strategy == FusionStrategy::kConstFrames) return full();
+  if (config_.strategy == FusionStrategy::kConstFrames || full()) return full();
   std::size_t points = 0;
   for (const DepthBatch& b : static_)
     points += b.points.size();

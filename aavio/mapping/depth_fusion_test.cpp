@@ -248,6 +248,35 @@ TEST(DepthFusion, ConstPointsPublishesFromHalfAndCleansWhenFull) {
   EXPECT_TRUE(by_points.full());
 }
 
+// A sparse scene's few points a cycle never reach max_points: with full_at_max_frames the FIFO
+// is full at max_frames batches, so its maps are cleaned and written.
+TEST(DepthFusion, ConstPointsFillsOnBatchesWhereTheSceneIsSparse) {
+  const RectifiedStereo stereo = testing::SmallStereo();
+  MappingConfig config;
+  config.fusion.strategy = FusionStrategy::kConstPoints;
+  config.fusion.max_points = 5000;
+  config.fusion.max_frames = 4;
+  DepthFusion sparse(stereo, config.fusion,
+                     {config.depth_refinement.max_inv_depth_stddev, config.inv_depth_range(),
+                      config.regularization.enabled});
+  for (int k = 0; k < 10; ++k) {
+    EXPECT_EQ(sparse.full(), k >= 4) << k;
+    EXPECT_EQ(sparse.ready_to_publish(), k >= 4) << k;
+    sparse.Add(StereoKind::kStatic,
+               {k, {}, std::vector<DepthPoint>(15, Point(50.0f + k, 60.0f, 0.1, 0.01))});
+  }
+  EXPECT_EQ(sparse.stored_points(), 150u);  // trimmed by points only, as the reference codes
+  // The reference codes' rule: points alone.
+  config.fusion.full_at_max_frames = false;
+  DepthFusion by_points(stereo, config.fusion,
+                        {config.depth_refinement.max_inv_depth_stddev, config.inv_depth_range(),
+                         config.regularization.enabled});
+  for (int k = 0; k < 10; ++k)
+    by_points.Add(StereoKind::kStatic, {k, {}, std::vector<DepthPoint>(15, Point(50, 60, 0.1, 0.01))});
+  EXPECT_FALSE(by_points.full());
+  EXPECT_FALSE(by_points.ready_to_publish());
+}
+
 // Edge samples on a 3-px grid inside the small stereo pair's overlap.
 std::vector<Eigen::Vector2f> SampleGrid() {
   std::vector<Eigen::Vector2f> points;

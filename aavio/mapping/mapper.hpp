@@ -21,8 +21,10 @@
 
 namespace aavio::mapping {
 
-/// A cycle with fewer usable edge samples maps nothing (the old map stays published).
-inline constexpr int kMinSamples = 100;
+/// A cycle with fewer usable edge samples maps nothing (the old map stays published): fewer than
+/// a first map may have (BootstrapConfig::kMinRegistrationPoints). A sparse scene gives 80–130
+/// samples a cycle, so a larger floor would leave it with its first map for good.
+inline constexpr int kMinSamples = static_cast<int>(BootstrapConfig::kMinRegistrationPoints);
 /// Mapping observations kept for the temporal partner search (1 s at 20 Hz).
 inline constexpr int kTemporalHistoryLength = 20;
 /// The cross-check partner's distance beyond the first partner, in units of min_translation_m:

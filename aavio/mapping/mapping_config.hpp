@@ -148,6 +148,10 @@ struct FusionConfig {
   /// or the other kind of stereo): a neighbouring sample of its own batch, spread into a shared
   /// cell, is no confirmation (aavio; the reference codes count every fusion).
   bool confirm_across_batches = false;
+  /// A const_points FIFO also counts as full (cleaned, confirmed, published) once it holds
+  /// max_frames batches: a sparse scene's few dozen points a cycle may never reach max_points,
+  /// and then no map would ever be cleaned or written (aavio; the reference codes count points).
+  bool full_at_max_frames = true;
 
   template <typename V>
   void VisitFields(V&& v) {
@@ -160,6 +164,8 @@ struct FusionConfig {
       "tracking also gets the maps of a filling FIFO (aavio)");
     v("confirm_across_batches", confirm_across_batches,
       "only an estimate of another batch confirms a point (aavio)");
+    v("full_at_max_frames", full_at_max_frames,
+      "a const_points FIFO is also full at max_frames batches: sparse scenes (aavio)");
   }
   Status Validate() const;
 };
