@@ -13,6 +13,7 @@
 #include "aavio/geometry/rectification.hpp"
 #include "aavio/mapping/mapper.hpp"
 #include "aavio/pipeline/odometry_config.hpp"
+#include "aavio/tracking/edge_age.hpp"
 
 namespace aavio::pipeline {
 
@@ -53,6 +54,8 @@ class MappingFrontEnd {
   mapping::RectifiedStereo stereo_;
   events::RepresentationBuilder builder_;
   mapping::Mapper mapper_;
+  tracking::Camera camera_;
+  tracking::AdaptiveDecay decay_;  // τ from the age of the events at the map's edges, as odometry
   TimeNs tick_ns_, next_tick_ns_;
   int ticks_per_cycle_;
   std::int64_t ticks_ = 0;
