@@ -146,6 +146,40 @@ TEST(Simulator, PointAtKnownDepthGivesTheRigsRowAndDisparity) {
   EXPECT_NEAR(disparity, rig.DisparityAtDepth(depth), 0.3);  // f·b/z
 }
 
+// World effects add lamps and moving objects to the world and leave the rest as it was: the same
+// motion, IMU and ground-truth path; lamps add events, a moving object shows in the depth maps.
+TEST(Simulator, WorldEffectsChangeTheWorldNotTheMotion) {
+  const std::vector<std::vector<std::string>> effects = {{}, {"flicker"}, {"moving_objects"}};
+  std::vector<std::filesystem::path> dirs;
+  std::vector<SimulationReport> reports;
+  for (const auto& names : effects) {
+    dirs.push_back(testing::ScratchDir() / "seq");
+    SimulationRequest request;
+    request.preset = "mini";
+    request.duration_s = 0.25;
+    request.out_dir = dirs.back().string();
+    request.world_effects = names;
+    Expected<SimulationReport> report = Simulate(request);
+    ASSERT_TRUE(report.ok()) << report.status().message();
+    reports.push_back(*report);
+  }
+  EXPECT_GT(reports[1].events_left, reports[0].events_left);
+  EXPECT_NE(reports[1].world_effects.find("flickering lights at 1"), std::string::npos)
+      << reports[1].world_effects;
+  EXPECT_EQ(reports[2].world_effects, "1 moving objects");
+  for (std::size_t k = 1; k < dirs.size(); ++k) {
+    for (const char* file : {"imu.txt", "groundtruth.txt"})
+      EXPECT_EQ(Bytes(dirs[0] / file), Bytes(dirs[k] / file)) << file;
+  }
+  EXPECT_NE(Bytes(dirs[0] / "depth/disparity_000003.png"),
+            Bytes(dirs[2] / "depth/disparity_000003.png"));
+  SimulationRequest bad;
+  bad.out_dir = (testing::ScratchDir() / "x").string();
+  bad.world_effects = {"rain"};
+  EXPECT_NE(Simulate(bad).status().message().find("unknown world effect 'rain'"),
+            std::string::npos);
+}
+
 TEST(Simulator, BadRequestsGiveClearErrors) {
   SimulationRequest request;
   request.out_dir = (testing::ScratchDir() / "x").string();
