@@ -96,7 +96,7 @@ double GroundBelow(const Scene& scene, const Eigen::Vector3d& p, const Eigen::Ve
   return fallback_m;
 }
 
-/// A box standing on the ground (its base `ground_m` below `centre_eye`, a point at the
+/// A box standing on the ground (its base `ground_m` below `at_eye_height`, a point at the
 /// camera's height), moving at `velocity`; its long side along the motion.
 void AddMovingBox(const Eigen::Vector3d& at_eye_height, double ground_m,
                   const Eigen::Vector3d& down, const Eigen::Vector3d& velocity,
