@@ -272,7 +272,8 @@ TEST(DepthFusion, ConstPointsFillsOnBatchesWhereTheSceneIsSparse) {
                         {config.depth_refinement.max_inv_depth_stddev, config.inv_depth_range(),
                          config.regularization.enabled});
   for (int k = 0; k < 10; ++k)
-    by_points.Add(StereoKind::kStatic, {k, {}, std::vector<DepthPoint>(15, Point(50, 60, 0.1, 0.01))});
+    by_points.Add(StereoKind::kStatic,
+                  {k, {}, std::vector<DepthPoint>(15, Point(50.0f, 60.0f, 0.1, 0.01))});
   EXPECT_FALSE(by_points.full());
   EXPECT_FALSE(by_points.ready_to_publish());
 }

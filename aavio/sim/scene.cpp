@@ -9,7 +9,8 @@ namespace aavio::sim {
 
 double Quad::RadianceAt(double t_s) const {
   if (flicker_hz <= 0.0) return 1.0;
-  return 1.0 - flicker_depth * 0.5 * (1.0 + std::cos(2.0 * M_PI * flicker_hz * t_s + flicker_phase_rad));
+  const double phase = 2.0 * M_PI * flicker_hz * t_s + flicker_phase_rad;
+  return 1.0 - flicker_depth * 0.5 * (1.0 + std::cos(phase));
 }
 
 void Scene::AddQuad(const Quad& quad) {

@@ -188,7 +188,8 @@ const std::vector<WorldEffect>& WorldEffects() {
 Status CheckWorldEffectNames(const std::vector<std::string>& names) {
   for (const std::string& name : names) {
     const auto& all = WorldEffects();
-    if (std::none_of(all.begin(), all.end(), [&](const WorldEffect& e) { return name == e.name; })) {
+    const auto named = [&](const WorldEffect& e) { return name == e.name; };
+    if (std::none_of(all.begin(), all.end(), named)) {
       std::string known;
       for (const WorldEffect& e : all) known += (known.empty() ? "" : ", ") + std::string(e.name);
       return InvalidArgument("unknown world effect '" + name + "' (there are: " + known + ")");
