@@ -10,6 +10,7 @@
 
 #include "aavio/geometry/random_draws.hpp"
 #include "aavio/geometry/rotation.hpp"
+#include "aavio/imu/imu_test_motion.hpp"
 
 namespace aavio::imu {
 namespace {
@@ -18,68 +19,13 @@ using geometry::ExpSO3;
 using geometry::LogSO3;
 using geometry::RigidTransform;
 
-// Gravity in the tracking's world, not along an axis (the world is the first camera's frame).
-const Eigen::Vector3d kGravity =
-    ExpSO3(Eigen::Vector3d(0.3, -0.2, 0.1)) * Eigen::Vector3d(0, 0, -9.81);
-const Eigen::Vector3d kGyroBias(0.004, -0.003, 0.002), kAccelBias(0.05, -0.04, 0.03);
-// The camera on the IMU: turned and 8 cm off.
-const RigidTransform kImuCam(ExpSO3(Eigen::Vector3d(1.2, -0.4, 0.3)),
-                             Eigen::Vector3d(0.08, 0.01, -0.03));
-
-// A motion of the IMU: hand-held (turning, ~1 m/s) or driving (10 m/s, a slow turn, bumps).
-struct Motion {
-  bool driving = false;
-  Eigen::Vector3d Phi(double t) const {
-    if (driving) return {0.02 * std::sin(2 * t), 0.3 * std::sin(0.3 * t), 0.01 * std::sin(1.7 * t)};
-    return {0.3 * std::sin(1.1 * t), -0.4 * std::sin(0.7 * t + 1), 0.5 * std::sin(0.5 * t)};
-  }
-  Eigen::Vector3d PhiDot(double t) const {
-    if (driving)
-      return {0.04 * std::cos(2 * t), 0.09 * std::cos(0.3 * t), 0.017 * std::cos(1.7 * t)};
-    return {0.33 * std::cos(1.1 * t), -0.28 * std::cos(0.7 * t + 1), 0.25 * std::cos(0.5 * t)};
-  }
-  Eigen::Matrix3d R(double t) const { return ExpSO3(Phi(t)); }
-  Eigen::Vector3d P(double t) const {
-    if (driving) return {10 * t, 0.05 * std::sin(3 * t), 2 * std::sin(0.2 * t)};
-    return {std::sin(0.8 * t), 0.3 * std::cos(1.3 * t), 0.5 * t + 0.1 * std::sin(2 * t)};
-  }
-  Eigen::Vector3d V(double t) const {
-    if (driving) return {10.0, 0.15 * std::cos(3 * t), 0.4 * std::cos(0.2 * t)};
-    return {0.8 * std::cos(0.8 * t), -0.39 * std::sin(1.3 * t), 0.5 + 0.2 * std::cos(2 * t)};
-  }
-  Eigen::Vector3d A(double t) const {
-    if (driving) return {0.0, -0.45 * std::sin(3 * t), -0.08 * std::sin(0.2 * t)};
-    return {-0.64 * std::sin(0.8 * t), -0.507 * std::cos(1.3 * t), -0.4 * std::sin(2 * t)};
-  }
-  RigidTransform WorldCam(double t) const { return RigidTransform(R(t), P(t)) * kImuCam; }
-};
-
-std::vector<ImuSample> Imu(const Motion& motion, double t_end_s, std::uint64_t seed) {
-  const ImuConfig config;
-  std::mt19937_64 rng(seed);
-  std::normal_distribution<double> n(0.0, 1.0);
-  std::vector<ImuSample> out;
-  for (int k = 0; k <= t_end_s * 1000; ++k) {
-    const double t = k / 1000.0;
-    const Eigen::Vector3d gyro =
-        geometry::RightJacobianSO3(motion.Phi(t)) * motion.PhiDot(t) + kGyroBias +
-        config.gyro_noise_density * std::sqrt(1000.0) * geometry::DrawZyx(n, rng);
-    const Eigen::Vector3d accel =
-        motion.R(t).transpose() * (motion.A(t) - kGravity) + kAccelBias +
-        config.accel_noise_density * std::sqrt(1000.0) * geometry::DrawZyx(n, rng);
-    out.push_back({SecondsToNs(t), gyro, accel});
-  }
-  return out;
-}
-
-// A tracked camera pose with the registration's few millimetres and tenth of a degree.
-RigidTransform Tracked(const Motion& motion, double t, std::mt19937_64& rng) {
-  std::normal_distribution<double> n(0.0, 1.0);
-  RigidTransform T = motion.WorldCam(t);
-  T.R = T.R * ExpSO3(0.0015 * geometry::DrawZyx(n, rng));
-  T.t += 0.003 * geometry::DrawZyx(n, rng);
-  return T;
-}
+using test_motion::Imu;
+using test_motion::kAccelBias;
+using test_motion::kGravity;
+using test_motion::kGyroBias;
+using test_motion::kImuCam;
+using test_motion::Motion;
+using test_motion::Tracked;
 
 // Feeds the back-end ticks of 10 ms from t0 to t1: the IMU up to each tick, then the tracked pose.
 void Track(const Motion& motion, ImuBackEnd* back_end, const std::vector<ImuSample>& imu, double t0,

@@ -35,6 +35,7 @@ Odometry::Odometry(const geometry::StereoRig& rig, const OdometryConfig& config,
       mapper_(stereo_, rectification_.left.valid_mask, config.mapping),
       imu_offset_ns_(SecondsToNs(config.imu.time_offset_s)),
       last_t_end_ns_(start_ns),
+      inertial_check_(rig.T_imu_rect_left().value_or(geometry::RigidTransform())),
       tick_ns_(SecondsToNs(1.0 / config.time_surface.rate_hz)),
       next_tick_ns_(start_ns + tick_ns_),
       last_tick_ns_(start_ns),
@@ -147,6 +148,16 @@ std::vector<imu::ImuSample> Odometry::ImuWindow(TimeNs t_ns) {
   return window;
 }
 
+void Odometry::Reinitialise(TimeNs t_ns, const geometry::RigidTransform& T_world_cam,
+                            bool keep_velocity) {
+  if (pending_cycle_.valid()) pending_cycle_.get();  // a cycle of the old map: dropped
+  mapper_.Reset();
+  PublishToTracking(nullptr);
+  tracker_.Reset(t_ns, T_world_cam, keep_velocity);
+  inertial_check_.Restart();
+  lost_ticks_ = 0;
+}
+
 Status Odometry::Tick(TimeNs t_ns, int skipped_ticks) {
   auto obs = std::make_shared<events::Observation>();
   // The right time surface, AA map and samples only where mapping may run: a bootstrap, or a
@@ -180,11 +191,29 @@ Status Odometry::Tick(TimeNs t_ns, int skipped_ticks) {
 
   const std::vector<imu::ImuSample> window = ImuWindow(t_ns);
   motion_evidence_.Add(window);
+  inertial_check_.AddSamples(window);
   const tracking::TrackingResult tracked =
       tracker_.Track(*obs, rectification_.left.valid_mask, window);
   tick.T_world_cam = tracked.T_world_cur;
   tick.status = tracked.status;
   tick.lost_reason = tracked.lost_reason;
+  // A tracked pose that the accelerometer contradicts is lost, and the map that misled it goes.
+  const bool imu_used = config_.imu.mode != imu::ImuMode::kOff && imu_seen_;
+  if (imu_used && run_mapping_ && tracked.status == tracking::TrackingStatus::kOk) {
+    const auto gravity =
+        inertial_check_.AddTrackedPose(t_ns, tracked.T_world_cur, tracker_.gyro_bias());
+    if (gravity && !gravity->agrees) {
+      tick.status = tracking::TrackingStatus::kLost;
+      tick.lost_reason = tracking::LostReason::kImuDisagrees;
+      tick.gyro_bias = tracker_.gyro_bias();
+      Reinitialise(t_ns, tick.T_world_cam, /*keep_velocity=*/false);
+      tick.reinitialised = true;
+      if (on_tick) on_tick(tick);
+      return Status::Ok();
+    }
+  } else {
+    inertial_check_.Restart();
+  }
   tick.registration_iterations = tracked.registration.iterations;
   tick.tracking_ms = tracked.prediction_ms + tracked.registration_ms;
   tick.prediction_ms = tracked.prediction_ms;
@@ -199,7 +228,6 @@ Status Odometry::Tick(TimeNs t_ns, int skipped_ticks) {
   if (!mapper_.initialized()) {
     // Bootstrap (SGM) on this tick at the current pose; too few points: try the next tick. A
     // small first map needs the IMU to show motion, if there is an IMU.
-    const bool imu_used = config_.imu.mode != imu::ImuMode::kOff && imu_seen_;
     const Status init = mapper_.Initialize(now, !imu_used || motion_evidence_.Moving());
     if (!init.ok() && init.code() != StatusCode::kFailedPrecondition) return init;
     if (!init.ok()) tick.bootstrap_failure = init.message();
@@ -249,12 +277,8 @@ Status Odometry::Tick(TimeNs t_ns, int skipped_ticks) {
     // Lost for too long (ticks without events too: the camera may have moved meanwhile, and the
     // gyroscope alone does not say how far): forget the map; the next ticks bootstrap at the
     // held pose.
-    if (pending_cycle_.valid()) pending_cycle_.get();  // a cycle of the old map: dropped
-    mapper_.Reset();
-    PublishToTracking(nullptr);
-    tracker_.Reset(t_ns, tracked.T_world_cur, /*keep_velocity=*/true);
+    Reinitialise(t_ns, tracked.T_world_cur, /*keep_velocity=*/true);
     tick.reinitialised = true;
-    lost_ticks_ = 0;
   }
 
   // This tick's AA map and tracked pose: a later cycle's temporal partner (partners are earlier

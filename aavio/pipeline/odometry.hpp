@@ -30,6 +30,7 @@
 
 #include "aavio/events/representation_builder.hpp"
 #include "aavio/geometry/rectification.hpp"
+#include "aavio/imu/inertial_check.hpp"
 #include "aavio/imu/motion_evidence.hpp"
 #include "aavio/mapping/mapper.hpp"
 #include "aavio/pipeline/odometry_config.hpp"
@@ -114,6 +115,9 @@ class Odometry {
   // The IMU samples of the tick at t_ns, in camera time.
   std::vector<imu::ImuSample> ImuWindow(TimeNs t_ns);
   void PublishToTracking(const mapping::LocalMapPtr& map);
+  // Mapping forgets its map and tracking restarts at the held pose (lost too long, or the
+  // tracked motion disagreed with the accelerometer).
+  void Reinitialise(TimeNs t_ns, const geometry::RigidTransform& T_world_cam, bool keep_velocity);
   // The age of the events at the map's edges seen from T_world_cam, for the next ticks' decay.
   void MeasureEdgeAge(const geometry::RigidTransform& T_world_cam, const events::Observation& obs);
   // Concurrent and real-time modes: a mapping cycle on its own thread, and its result.
@@ -138,6 +142,7 @@ class Odometry {
   TimeNs last_t_end_ns_;            // all data is in up to here
   bool imu_seen_ = false;           // any IMU sample in the input so far
   imu::MotionEvidence motion_evidence_;  // for the first map: is the camera moving?
+  imu::InertialCheck inertial_check_;     // does the tracked motion agree with the accelerometer?
   TimeNs tick_ns_, next_tick_ns_;
   TimeNs last_tick_ns_;   // the last tick run (the start before the first)
   TimeNs cycle_ns_;       // mapping period: a whole number of ticks

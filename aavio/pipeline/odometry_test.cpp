@@ -6,6 +6,7 @@
 #include <tbb/global_control.h>
 
 #include <cmath>
+#include <functional>
 #include <optional>
 #include <random>
 
@@ -32,9 +33,11 @@ OdometryConfig RpgPreset() {
 }
 
 /// Every tick of the recording; the cameras see nothing in [blind_from_s, blind_to_s); the IMU's
-/// stamps are `imu_late_ns` late (each packet gets the samples stamped before its end).
+/// stamps are `imu_late_ns` late (each packet gets the samples stamped before its end), and
+/// `alter_imu` (if given) changes each sample.
 std::vector<OdometryTick> RunMini(const OdometryConfig& config, double blind_from_s = -1.0,
-                                  double blind_to_s = -1.0, TimeNs imu_late_ns = 0) {
+                                  double blind_to_s = -1.0, TimeNs imu_late_ns = 0,
+                                  const std::function<void(imu::ImuSample*)>& alter_imu = {}) {
   const aavio::testing::SimulatedSequence& r = Mini();
   if (!r.rig || r.packets.empty()) {
     ADD_FAILURE() << "the mini sequence could not be simulated or read";
@@ -44,6 +47,7 @@ std::vector<OdometryTick> RunMini(const OdometryConfig& config, double blind_fro
   for (const io::SensorPacket& p : r.packets)
     for (imu::ImuSample s : p.imu) {
       s.t_ns += imu_late_ns;
+      if (alter_imu) alter_imu(&s);
       imu.push_back(s);
     }
   Odometry odometry(*r.rig, config, r.start_ns);
@@ -213,6 +217,36 @@ TEST(Odometry, TheImuTimeOffsetUndoesALateImuClock) {
     differ_untold += untold[i].T_world_cam.R != on_time[i].T_world_cam.R;
   }
   EXPECT_GT(differ_untold, static_cast<int>(on_time.size()) / 2);
+}
+
+TEST(Odometry, ATrackTheAccelerometerContradictsIsLostAndMappingRestarts) {
+  const std::vector<OdometryTick> plain = RunMini(RpgPreset());
+  for (const OdometryTick& t : plain)
+    ASSERT_NE(t.lost_reason, tracking::LostReason::kImuDisagrees) << NsToSeconds(t.t_ns);
+  // From 0.7 s the accelerometer reads half as much again as it should (a wrong range setting):
+  // the events show no such acceleration, so the tracked motion and the IMU disagree.
+  const TimeNs from_ns = Mini().start_ns + SecondsToNs(0.7);
+  const std::vector<OdometryTick> ticks =
+      RunMini(RpgPreset(), -1.0, -1.0, 0, [from_ns](imu::ImuSample* s) {
+        if (s->t_ns >= from_ns) s->accel_m_s2 *= 1.5;
+      });
+  std::optional<std::size_t> first;
+  for (std::size_t i = 0; i < ticks.size(); ++i) {
+    ASSERT_TRUE(Finite(ticks[i].T_world_cam));
+    if (ticks[i].lost_reason == tracking::LostReason::kImuDisagrees && !first) first = i;
+  }
+  ASSERT_TRUE(first.has_value());
+  const OdometryTick& lost = ticks[*first];
+  EXPECT_EQ(lost.status, tracking::TrackingStatus::kLost);
+  EXPECT_TRUE(lost.reinitialised);
+  // Seen within 0.6 s (by the first three anchors 0.25 s apart after the change).
+  EXPECT_GE(lost.t_ns, from_ns);
+  EXPECT_LE(lost.t_ns, from_ns + SecondsToNs(0.6));
+  // Mapping starts again: a new first map after it.
+  bool bootstrapped = false;
+  for (std::size_t i = *first + 1; i < ticks.size(); ++i)
+    bootstrapped = bootstrapped || ticks[i].bootstrap;
+  EXPECT_TRUE(bootstrapped);
 }
 
 }  // namespace

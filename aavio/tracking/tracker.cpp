@@ -57,6 +57,8 @@ const char* LostReasonName(LostReason reason) {
       return "translation_jump";
     case LostReason::kNoEvents:
       return "no_events";
+    case LostReason::kImuDisagrees:
+      return "imu_disagrees";
   }
   return "?";
 }

@@ -39,6 +39,8 @@ enum class LostReason {
   kTranslationJump,  ///< ... or by more than max_correction_m
   kNoEvents,  ///< under 10 % of the events of recent tracked ticks (darkness, a covered lens, a
               ///< standstill): not registered; the pose holds, turned by the gyroscope
+  kImuDisagrees,  ///< (set by the odometry) the tracked motion of the last 0.5 s contradicts the
+                  ///< accelerometer (imu::InertialCheck): the track diverged; mapping restarts
 };
 const char* LostReasonName(LostReason reason);
 /// "ok", "lost", "no_map" or "imu" (summary.json, timings.csv, the Python module).
