@@ -101,6 +101,17 @@ Expected<StereoRig> StereoRig::Create(StereoRigParams p, std::vector<std::string
   return StereoRig(std::move(p), baseline_m);
 }
 
+Expected<StereoRig> StereoRig::WithBaseline(double baseline_m) const {
+  if (!(baseline_m > 0.0) || !std::isfinite(baseline_m))
+    return InvalidArgument("a stereo baseline must be a positive length in metres, not " +
+                           std::to_string(baseline_m));
+  StereoRigParams p = p_;
+  const double scale = baseline_m / baseline_m_;
+  p.T_right_left.t *= scale;
+  p.P_right.col(3) *= scale;
+  return Create(std::move(p));
+}
+
 RigidTransform StereoRig::T_rect_right_rect_left() const {
   return {Eigen::Matrix3d::Identity(), Eigen::Vector3d(-baseline_m_, 0.0, 0.0)};
 }

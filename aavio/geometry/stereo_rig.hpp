@@ -63,6 +63,10 @@ class StereoRig {
   /// IMU ← rectified left camera, the frame tracking estimates; empty if no IMU extrinsic.
   std::optional<RigidTransform> T_imu_rect_left() const;
 
+  /// The same rig with the right camera moved along the baseline so that it is `baseline_m` long
+  /// (T_right_left's translation and P_right's last column scaled; everything else kept).
+  Expected<StereoRig> WithBaseline(double baseline_m) const;
+
   /// Disparity u_L − u_R of a point at depth z [m] in the rectified pair (includes the
   /// principal-point offset cx_L − cx_R of rigs rectified without zero disparity).
   double DisparityAtDepth(double depth_m) const;

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "tests/fixtures/cameras.hpp"
 
 namespace aavio::geometry {
@@ -32,6 +34,24 @@ TEST(StereoRig, DerivesBaselineAndRectifiedGeometry) {
   // Rectified right ← rectified left is the pure baseline translation.
   const RigidTransform T = rig->T_rect_right_rect_left();
   EXPECT_EQ(T.t, Eigen::Vector3d(-rig->baseline_m(), 0, 0));
+}
+
+TEST(StereoRig, WithBaselineMovesOnlyTheRightCameraAlongTheBaseline) {
+  Expected<StereoRig> rig = StereoRig::Create(RpgParams());
+  ASSERT_TRUE(rig.ok());
+  Expected<StereoRig> wide = rig->WithBaseline(0.6);
+  ASSERT_TRUE(wide.ok()) << wide.status().message();
+  EXPECT_NEAR(wide->baseline_m(), 0.6, 1e-12);
+  EXPECT_DOUBLE_EQ(wide->focal_px(), rig->focal_px());
+  EXPECT_DOUBLE_EQ(wide->cx_right(), rig->cx_right());
+  EXPECT_NEAR(wide->DisparityAtDepth(2.0), 156.925 * 0.6 / 2.0 + rig->cx_left() - rig->cx_right(),
+              1e-9);
+  EXPECT_TRUE(wide->T_right_left().R.isApprox(rig->T_right_left().R, 1e-12));
+  EXPECT_NEAR(wide->T_right_left().t.normalized().dot(rig->T_right_left().t.normalized()), 1.0,
+              1e-12);
+  EXPECT_FALSE(rig->WithBaseline(0.0).ok());
+  EXPECT_FALSE(rig->WithBaseline(-0.1).ok());
+  EXPECT_FALSE(rig->WithBaseline(std::nan("")).ok());
 }
 
 TEST(StereoRig, ImuExtrinsicIsComposedWithTheRectification) {

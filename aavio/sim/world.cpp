@@ -195,6 +195,7 @@ Status SimulationRequest::Validate() const {
   FieldChecker check;
   if (duration_s) check.InRange("duration_s", *duration_s, 1e-3, kDay_s);
   check.InRange("speed", speed, 0.05, 10.0);
+  if (baseline_m) check.InRange("baseline_m", *baseline_m, 0.01, 2.0);
   if (!scene.empty() && !SceneKindNamed(scene).ok())
     check.Require(false, "scene", "= " + SceneKindNamed(scene).status().message());
   if (Status names = CheckWorldEffectNames(world_effects); !names.ok())
@@ -243,6 +244,8 @@ Expected<SimulationWorld> BuildSimulationWorld(const SimulationRequest& request)
     if (!loaded) return loaded.status();
     rig = loaded->rig;
   }
+  if (!rig) return rig.status();
+  if (request.baseline_m) rig = rig->WithBaseline(*request.baseline_m);
   if (!rig) return rig.status();
   Expected<geometry::StereoRig> calibration_rig =
       PerturbCalibration(*rig, sensor->rig, request.seed);

@@ -53,6 +53,7 @@ struct SimulationRequest {
   std::string motion;                   ///< a built-in motion by name; empty: the preset's
   std::string trajectory;               ///< TUM file: follow a recorded camera path (a twin)
   std::string calibration;              ///< ESVO/DSEC calibration replacing the preset's
+  std::optional<double> baseline_m;     ///< the rig's baseline replaced (0.01–2 m)
   std::string body_to_camera = "auto";  ///< identity | driving | auto (driving rule for cars)
   bool preview = false;
   std::string sensor = "typical";         ///< ideal | typical | harsh | a sensor YAML file

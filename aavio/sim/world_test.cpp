@@ -70,6 +70,20 @@ TEST(SimulationWorld, APresetsSensorTakesAnotherScenesAndMotion) {
             std::string::npos);
 }
 
+TEST(SimulationWorld, ABaselineReplacesThePresetsAndTheCalibrationFollows) {
+  SimulationRequest request;
+  request.preset = "mini";
+  request.duration_s = 0.5;
+  request.baseline_m = 0.45;
+  Expected<SimulationWorld> w = BuildSimulationWorld(request);
+  ASSERT_TRUE(w.ok()) << w.status().message();
+  EXPECT_NEAR(w->rig.baseline_m(), 0.45, 1e-9);
+  // The typical sensor's calibration error is a few tenths of a millimetre, not the old baseline.
+  EXPECT_NEAR(w->calibration_rig.baseline_m(), 0.45, 0.01);
+  request.baseline_m = 3.0;
+  EXPECT_NE(request.Validate().message().find("baseline_m"), std::string::npos);
+}
+
 TEST(SimulationWorld, AStopBrakesStandsStillAndDrivesOn) {
   const SimulationWorld plain = World({});
   // Stop over 1–2 s: braking 1–1.25 s, standing 1.25–1.75 s, starting 1.75–2 s.

@@ -127,6 +127,7 @@ void RegisterSimulate(CLI::App& app, Context& ctx) {
   auto request = std::make_shared<sim::SimulationRequest>();
   auto quiet = std::make_shared<bool>(false);
   auto duration = std::make_shared<double>(0.0);
+  auto baseline = std::make_shared<double>(0.0);
   auto print_sensor = std::make_shared<bool>(false);
   std::string names;
   for (const std::string& n : sim::SimulationPresetNames())
@@ -155,6 +156,10 @@ void RegisterSimulate(CLI::App& app, Context& ctx) {
   sub->add_option("--trajectory", request->trajectory,
                   "Follow a recorded camera path (TUM file): a twin of a real sequence");
   sub->add_option("--calib", request->calibration, "Calibration replacing the preset's");
+  sub->add_option("--baseline", *baseline,
+                  "Stereo baseline in metres replacing the preset's (or --calib's): the right "
+                  "camera moved along it (0.01-2)")
+      ->check(NumberIn(0.01, 2.0));
   sub->add_option("--body-to-camera", request->body_to_camera,
                   "identity, driving (camera +z along travel, +y down) or auto")
       ->check(CLI::IsMember({"identity", "driving", "auto"}));
@@ -193,8 +198,8 @@ void RegisterSimulate(CLI::App& app, Context& ctx) {
   sub->add_flag("--preview", request->preview,
                 "Write preview/ PNGs (event frames, depth, top view)");
   sub->add_flag("--quiet", *quiet, "No progress output");
-  sub->callback([&ctx, request, quiet, duration, print_sensor, disturbances] {
-    ctx.action = [&ctx, request, quiet, duration, print_sensor, disturbances] {
+  sub->callback([&ctx, request, quiet, duration, baseline, print_sensor, disturbances] {
+    ctx.action = [&ctx, request, quiet, duration, baseline, print_sensor, disturbances] {
       for (const auto& [option, text] : *disturbances) {
         Expected<sim::Disturbance> d = ParseDisturbance(option, text);
         if (!d) {
@@ -210,6 +215,7 @@ void RegisterSimulate(CLI::App& app, Context& ctx) {
         return static_cast<int>(kExitUsage);
       }
       if (*duration > 0.0) request->duration_s = *duration;
+      if (*baseline > 0.0) request->baseline_m = *baseline;
       return RunSimulate(*request, *quiet, ctx);
     };
   });
