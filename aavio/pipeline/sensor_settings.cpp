@@ -19,6 +19,13 @@ constexpr long kHighResolutionPixels = 500000;
 // The σ of a depth, in pixels of disparity at the middle of the depth range, beyond which
 // refinement culls it: 0.51 px is both rpg's 3.5 % and DSEC's 10 %.
 constexpr double kMaxDisparityStddevPx = 0.51;
+// Refinement culls a depth whose σ_ρ exceeds ESVO's rpg stdVar_vis_threshold, 0.015 1/m — but
+// σ_ρ is a disparity σ divided by f·b, so on a narrow rig that value asks a precision static
+// stereo cannot give: 0.12 px of a 5 cm DAVIS240C pair, which then keeps 1 match in 100. The
+// cull never asks more than 0.2 px (ESVO's value asks 0.35 px of the rpg pair and 0.23 px of the
+// 160×120 mini rig, which both keep theirs).
+constexpr double kEsvoMaxInvDepthStddev = 0.015;
+constexpr double kMinDisparityStddevPx = 0.2;
 // Baselines from here up are cars' (DSEC 0.6 m, KITTI 0.54 m); hand-held, drone and robot rigs
 // are 0.1–0.2 m (rpg 0.15, MVSEC 0.10, TUM-VIE 0.12, VECtor 0.17).
 constexpr double kDrivingBaselineM = 0.3;
@@ -75,6 +82,15 @@ std::vector<SensorSetting> DeriveSensorSettings(const SensorFacts& sensor,
                              : ": 2 px, so that the budget does not crowd the strongest edges")});
   s.push_back({"mapping.static_stereo.smooth_time_surface", small ? "false" : "true",
                size + (small ? ": off (ESVO rpg)" : ": on (ESVO, ESVO2 DSEC)")});
+
+  const double fb = sensor.focal_px * sensor.baseline_m;
+  if (fb > 0.0) {
+    const double stddev = std::max(kEsvoMaxInvDepthStddev, kMinDisparityStddevPx / fb);
+    s.push_back({"mapping.depth_refinement.max_inv_depth_stddev", StrFormat("%.3g", stddev),
+                 StrFormat("ESVO rpg's 0.015 1/m, or 0.2 px of disparity where f*b is under "
+                           "13.3 px*m: max(0.015, 0.2 / f*b %.1f px*m)",
+                           fb)});
+  }
 
   const double rho_mid = std::sqrt(scene.mapping.inv_depth_min * scene.mapping.inv_depth_max);
   const double disparity_mid_px = sensor.focal_px * sensor.baseline_m * rho_mid;

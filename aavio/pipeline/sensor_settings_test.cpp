@@ -48,6 +48,7 @@ TEST(SensorSettings, ReproduceTheReferenceValuesOnTheirRigs) {
       {"mapping.max_points", "2000"},
       {"edge_sampling.min_spacing_px", "0"},
       {"mapping.static_stereo.smooth_time_surface", "false"},
+      {"mapping.depth_refinement.max_inv_depth_stddev", "0.015"},
       {"mapping.depth_refinement.max_relative_stddev", "0.035"}};
   EXPECT_EQ(rpg, rpg_expected);
   const std::map<std::string, std::string> dsec = Derive(kDsec, "driving");
@@ -61,6 +62,7 @@ TEST(SensorSettings, ReproduceTheReferenceValuesOnTheirRigs) {
       {"mapping.max_points", "2500"},
       {"edge_sampling.min_spacing_px", "2"},
       {"mapping.static_stereo.smooth_time_surface", "true"},
+      {"mapping.depth_refinement.max_inv_depth_stddev", "0.015"},  // driving.yaml turns it off
       {"mapping.depth_refinement.max_relative_stddev", "0.1"}};
   EXPECT_EQ(dsec, dsec_expected);
 }
@@ -78,6 +80,10 @@ TEST(SensorSettings, FollowTheResolutionAndTheDisparityElsewhere) {
   const std::map<std::string, std::string> mvsec = Derive(kMvsec, "indoor");
   EXPECT_EQ(mvsec.at("edge_sampling.num_points"), "2000");
   EXPECT_EQ(mvsec.at("mapping.depth_refinement.max_relative_stddev"), "0.04");
+  EXPECT_EQ(mvsec.at("mapping.depth_refinement.max_inv_depth_stddev"), "0.015");
+  // A 5 cm DAVIS240C pair (f·b 7.8 px·m): ESVO's 0.015 1/m would ask 0.12 px of disparity.
+  const std::map<std::string, std::string> narrow = Derive({240, 180, 156.925, 0.05}, "indoor");
+  EXPECT_EQ(narrow.at("mapping.depth_refinement.max_inv_depth_stddev"), "0.0255");  // 0.2 px
   // A wider depth range moves the middle of it, and the cull with it.
   OdometryConfig far = Preset("indoor");
   far.mapping.inv_depth_min = 0.05;
