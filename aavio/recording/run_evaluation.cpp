@@ -49,6 +49,13 @@ Expected<TrajectoryEvaluation> EvaluateTrajectories(
   Expected<std::vector<eval::PosePair>> pairs =
       eval::Associate(estimate, ground_truth, SecondsToNs(options.max_dt_s));
   if (!pairs) return pairs.status();
+  if (pairs->size() < kMinPosePairs) {
+    return InvalidArgument(StrFormat(
+        "only %zu estimated pose(s) have a ground-truth pose within %g ms: a trajectory score "
+        "needs at least %zu (an alignment fits 3 positions), so none is given (is the estimate "
+        "this short, or do the two trajectories barely overlap in time?)",
+        pairs->size(), options.max_dt_s * 1e3, kMinPosePairs));
+  }
   e.pairs = std::move(*pairs);
   for (std::size_t i = 1; i < ground_truth.size(); ++i)
     e.gt_path_length_m +=

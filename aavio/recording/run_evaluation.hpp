@@ -36,6 +36,9 @@ struct TrajectoryEvaluation {
   eval::RelativeError relative;
 };
 
+/// Fewer pose pairs make no trajectory score: the alignment needs 3 positions.
+inline constexpr std::size_t kMinPosePairs = 3;
+
 Expected<TrajectoryEvaluation> EvaluateTrajectories(
     const std::vector<geometry::StampedPose>& estimate,
     const std::vector<geometry::StampedPose>& ground_truth, const TrajectoryEvalOptions& options);

@@ -302,10 +302,16 @@ Expected<RunRecord> RunRecorder::Finish(bool interrupted, TimeNs end_ns,
   keep(depth_writer_.Finish());
 
   // Accuracy against the ground truth (what `aavio eval --run` computes, se3-aligned).
+  // A failed evaluation is said in the summary (accuracy_error), which is written all the same,
+  // and is the run's result.
+  Status evaluation = Status::Ok();
   if (truth_ && !trajectory_.empty()) {
     Expected<TrajectoryEvaluation> e = EvaluateTrajectories(trajectory_, gt_poses_, {});
-    if (!e) return e.status().WithContext(truth_->trajectory_path);
-    record.accuracy = std::move(*e);
+    if (e) {
+      record.accuracy = std::move(*e);
+    } else {
+      evaluation = e.status().WithContext(truth_->trajectory_path);
+    }
   }
   if (scorer_) {
     eval::DepthErrorSummary depth = scorer_->accumulator().Summary();
@@ -366,6 +372,7 @@ Expected<RunRecord> RunRecorder::Finish(bool interrupted, TimeNs end_ns,
                           {"total_s", st.total_s}};
   }
   if (record.accuracy) s["accuracy"] = TrajectoryEvaluationJson(*record.accuracy);
+  if (!evaluation.ok()) s["accuracy_error"] = evaluation.message();
   if (record.depth) s["depth"] = DepthJson(*record.depth);
   if (record.depth && record.sample_ceiling)
     s["depth"]["sample_ceiling"] = CoverageJson(*record.sample_ceiling);
@@ -377,6 +384,8 @@ Expected<RunRecord> RunRecorder::Finish(bool interrupted, TimeNs end_ns,
   s.update(extra);
   keep(io::WriteTextFile((out / run_files::kSummary).string(), s.dump(2) + "\n"));
   if (!failures.empty()) return failures.front();
+  // (An interrupted run's result is the interruption; its summary says why it has no score.)
+  if (!evaluation.ok() && !interrupted) return evaluation;
   return record;
 }
 

@@ -287,6 +287,15 @@ TEST(Cli, EvalComparesTrajectoryFiles) {
   r = RunAavio({"eval", "--est", (dir / "late.txt").string(), "--gt", g});
   EXPECT_EQ(r.code, kExitError);
   EXPECT_NE(r.err.find("overlap"), std::string::npos) << r.err;
+  // Two poses make no score (an alignment fits 3 positions); three do.
+  const std::string two_poses = (dir / "two.txt").string(), three = (dir / "three.txt").string();
+  testing::WriteFile(two_poses, "100.00 0 0 0 0 0 0 1\n100.01 0.02 0 0 0 0 0 1\n");
+  testing::WriteFile(three, "100.00 0 0 0 0 0 0 1\n100.01 0.02 0 0 0 0 0 1\n"
+                            "100.02 0.04 0.001 0 0 0 0 1\n");
+  r = RunAavio({"eval", "--est", two_poses, "--gt", g});
+  EXPECT_EQ(r.code, kExitError);
+  EXPECT_NE(r.err.find("only 2 estimated pose(s)"), std::string::npos) << r.err;
+  EXPECT_EQ(RunAavio({"eval", "--est", three, "--gt", g}).code, kExitOk);
   EXPECT_EQ(RunAavio({"eval", "--est", m}).code, kExitUsage);
   EXPECT_EQ(RunAavio({"eval", "--est", m, "--gt", g, "--run", dir.string()}).code, kExitUsage);
   r = RunAavio({"eval", "--run", dir.string()});

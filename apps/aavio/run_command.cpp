@@ -383,7 +383,18 @@ Expected<bool> Run(RunOptions options, Context& ctx) {
                          : ("holds what could be written of it (" + record.status().message() + ")")
                                .c_str()));
   }
-  if (!record) return record.status();
+  if (!record) {
+    return Status(record.status().code(),
+                  record.status().message() + "\n" + options.out_dir +
+                      " holds the run's outputs; its summary.json says why it has no accuracy");
+  }
+  if (recorder.trajectory().empty() && !fed.interrupted && !options.gt_poses) {
+    return FailedPrecondition(StrFormat(
+        "no pose was estimated: the %.3f s of data read hold no tick (one every %.1f ms, "
+        "time_surface.rate_hz): check --start and --duration against the sequence's span "
+        "(`aavio info %s`)",
+        record->data_s, 1e3 / config->time_surface.rate_hz, options.sequence.c_str()));
+  }
   PrintRun(*record, options, tracking_error, EnumName(config->imu.mode), ctx);
   return fed.interrupted;
 }

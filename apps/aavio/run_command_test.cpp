@@ -279,6 +279,22 @@ TEST(Cli, RunOdometryWritesItsOutputsAndIsDeterministic) {
   ASSERT_EQ(r.code, kExitOk) << r.err;
   EXPECT_NE(r.out.find("rpg_trajectory_evaluation form"), std::string::npos) << r.out;
 
+  // Too little data for a score, or for a pose: an error, never a figure from two poses or a
+  // run with no pose and exit 0; the outputs and summary.json are written all the same.
+  const std::string short_run = (dir / "short").string();
+  r = RunAavio({"run", seq, "--out", short_run, "--quiet", "--duration", "0.025"});
+  EXPECT_EQ(r.code, kExitError);
+  EXPECT_NE(r.err.find("a trajectory score needs at least 3"), std::string::npos) << r.err;
+  std::ifstream short_in(std::filesystem::path(short_run) / "summary.json");
+  const nlohmann::json short_summary = nlohmann::json::parse(short_in);
+  EXPECT_FALSE(short_summary.contains("accuracy"));
+  EXPECT_NE(short_summary["accuracy_error"].get<std::string>().find("only 2 estimated pose(s)"),
+            std::string::npos);
+  r = RunAavio({"run", seq, "--out", short_run, "--quiet", "--overwrite", "--duration", "0.004"});
+  EXPECT_EQ(r.code, kExitError);
+  EXPECT_NE(r.err.find("no pose was estimated"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--start and --duration"), std::string::npos) << r.err;
+
   // `aavio report` of the two runs on one page: html with the plots embedded, non-empty PNGs.
   const std::string html = (dir / "report" / "report.html").string();
   r = RunAavio(
