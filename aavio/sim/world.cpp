@@ -212,12 +212,19 @@ Status SimulationRequest::Validate() const {
     check.InRange("disturbances.duration_s", d.duration_s, 1e-3, kDay_s);
     if (d.kind == Disturbance::Kind::kFastMotion)
       check.InRange("disturbances.factor", d.factor, 1.0, 20.0);
+    // A stop must end within the sequence (its motion resumes); any other stretch must at least
+    // begin within it, or it would silently do nothing.
     if (d.kind == Disturbance::Kind::kStop && duration_s)
       check.Require(d.start_s + d.duration_s <= *duration_s, "disturbances",
                     "stop from " + FieldChecker::Num(d.start_s) + " s for " +
                         FieldChecker::Num(d.duration_s) + " s ends after the sequence (" +
                         FieldChecker::Num(*duration_s) +
                         " s): a stop must end within it (lengthen --duration or shorten it)");
+    if (d.kind != Disturbance::Kind::kStop && duration_s)
+      check.Require(d.start_s < *duration_s, "disturbances",
+                    "a stretch from " + FieldChecker::Num(d.start_s) +
+                        " s starts after the sequence ends (" + FieldChecker::Num(*duration_s) +
+                        " s) and would change nothing: start it earlier or lengthen --duration");
   }
   return check.status();
 }

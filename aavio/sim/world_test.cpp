@@ -127,6 +127,22 @@ TEST(SimulationWorld, AStopPastTheEndIsAClearError) {
       << status.message();
 }
 
+TEST(SimulationWorld, AStretchAfterTheEndIsAClearError) {
+  for (const Disturbance::Kind kind : {Disturbance::Kind::kDark, Disturbance::Kind::kRightOff,
+                                       Disturbance::Kind::kFastMotion}) {
+    SimulationRequest request;
+    request.preset = "mini";
+    request.duration_s = 1.0;
+    request.disturbances = {{kind, 5.0, 1.0, 4.0}};
+    EXPECT_NE(request.Validate().message().find(
+                  "a stretch from 5 s starts after the sequence ends (1 s) and would change nothing"),
+              std::string::npos)
+        << request.Validate().message();
+    request.disturbances = {{kind, 0.9, 1.0, 4.0}};  // starts within it: fine
+    EXPECT_TRUE(request.Validate().ok()) << request.Validate().message();
+  }
+}
+
 TEST(SimulationWorld, DarkAndCameraOffStretchesLeaveTheMotionAlone) {
   const SimulationWorld plain = World({});
   const SimulationWorld dark =
