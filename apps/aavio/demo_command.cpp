@@ -84,7 +84,7 @@ void RegisterDemo(CLI::App& app, Context& ctx) {
       ->capture_default_str();
   sub->add_option("--seed", options->seed, "Seed of the scene, motion and sensor noise")
       ->capture_default_str()
-      ->check(NonNegative());
+      ->check(Seed());
   sub->add_flag("--resimulate", options->resimulate, "Simulate again even if the folder has data");
   sub->callback(
       [&ctx, options] { ctx.action = [&ctx, options] { return RunDemo(*options, ctx); }; });

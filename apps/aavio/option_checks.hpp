@@ -30,6 +30,22 @@ inline CLI::Validator NonNegative() {
   return NumberIn(0.0, std::numeric_limits<double>::max());
 }
 
+/// A seed: a whole number that fits 64 bits (a larger one would wrap to another seed).
+inline CLI::Validator Seed() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        const bool digits = !text.empty() && text.size() <= 20 &&
+                            text.find_first_not_of("0123456789") == std::string::npos;
+        // 20 digits fit only up to 18446744073709551615 (compared as text, same length).
+        if (!digits || (text.size() == 20 && text > "18446744073709551615")) {
+          return "Value " + text + " is not a seed: give a whole number from 0 to " +
+                 "18446744073709551615";
+        }
+        return std::string();
+      },
+      "UINT64");
+}
+
 /// A span of data time in seconds: 0 to a million (11.6 days; larger ones overflow nanoseconds
 /// on a sensor clock).
 inline CLI::Validator DataSeconds() {

@@ -57,6 +57,13 @@ TEST(Options, AbsurdValuesNameTheOptionAndItsRange) {
   err.str("");
   EXPECT_EQ(RunCli({"aavio", "simulate", "--out", "x", "--seed", "-3"}, out, err), kExitUsage);
   EXPECT_NE(err.str().find("--seed"), std::string::npos) << err.str();
+  for (const char* seed : {"18446744073709551616", "99999999999999999999", "1e3", "2.5"}) {
+    err.str("");
+    EXPECT_EQ(RunCli({"aavio", "simulate", "--out", "x", "--seed", seed}, out, err), kExitUsage);
+    EXPECT_NE(err.str().find("is not a seed: give a whole number from 0 to 18446744073709551615"),
+              std::string::npos)
+        << err.str();
+  }
   err.str("");
   EXPECT_EQ(RunCli({"aavio", "run", "seq", "--out", "x", "--duration", "nan"}, out, err),
             kExitUsage);

@@ -152,7 +152,7 @@ void RegisterSimulate(CLI::App& app, Context& ctx) {
                   "The motion played FACTOR times as fast (0.05-10; 0.2: slow, 3: fast)")
       ->check(NumberIn(0.05, 10.0));
   sub->add_option("--seed", request->seed, "Seed of the scene, motion, noise and sensor")
-      ->check(NonNegative());
+      ->check(Seed());
   sub->add_option("--trajectory", request->trajectory,
                   "Follow a recorded camera path (TUM file): a twin of a real sequence");
   sub->add_option("--calib", request->calibration, "Calibration replacing the preset's");
