@@ -136,6 +136,12 @@ Status LiveOdometry::PushImu(std::span<const imu::ImuSample> samples) {
           static_cast<long long>(s.t_ns), static_cast<long long>(watermark),
           static_cast<long long>(start_ns_)));
     }
+    if (!s.gyro_rad_s.allFinite() || !s.accel_m_s2.allFinite()) {
+      return InvalidArgument(StrFormat(
+          "LiveOdometry::PushImu: the IMU sample at t = %lld ns reads a %s that is not finite "
+          "(NaN or infinite); drop or repair such samples before pushing them",
+          static_cast<long long>(s.t_ns), s.gyro_rad_s.allFinite() ? "specific force" : "rate"));
+    }
     watermark = s.t_ns;
   }
   imu_.insert(imu_.end(), samples.begin(), samples.end());

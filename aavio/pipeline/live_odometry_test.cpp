@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
 #include <random>
 
 #include "tests/preset_config.hpp"
@@ -223,6 +225,13 @@ TEST(LiveOdometry, RefusesDataOutOfOrderAndAbsurdOptions) {
   EXPECT_FALSE((*live)->PushEvents(events::Camera::kLeft, before).ok());
   const std::vector<imu::ImuSample> imu = {{.t_ns = 10}, {.t_ns = 5}};
   EXPECT_NE((*live)->PushImu(imu).message().find("IMU sample at t = 5 ns"), std::string::npos);
+  std::vector<imu::ImuSample> nan_gyro = {{.t_ns = 20}}, infinite_accel = {{.t_ns = 30}};
+  nan_gyro[0].gyro_rad_s.y() = std::nan("");
+  infinite_accel[0].accel_m_s2.z() = std::numeric_limits<double>::infinity();
+  EXPECT_NE((*live)->PushImu(nan_gyro).message().find("t = 20 ns reads a rate that is not finite"),
+            std::string::npos);
+  EXPECT_NE((*live)->PushImu(infinite_accel).message().find("specific force that is not finite"),
+            std::string::npos);
   ASSERT_TRUE((*live)->Finish().ok());
   EXPECT_EQ((*live)->PushImu({}).code(), StatusCode::kFailedPrecondition);
 }
