@@ -16,7 +16,7 @@ double MsSince(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
-// SplitMix64: a tick's own seed from the run's seed and the tick time.
+// SplitMix64: a tick's own seed from the run's seed and the tick's time since the epoch.
 std::uint64_t TickSeed(std::uint64_t seed, TimeNs t_ns) {
   std::uint64_t z = seed ^ (static_cast<std::uint64_t>(t_ns) * 0x9e3779b97f4a7c15ull);
   z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
@@ -40,7 +40,8 @@ RepresentationBuilder::RepresentationBuilder(const geometry::StereoRectification
              {},
              std::numeric_limits<TimeNs>::min()},
       accumulator_(width, height, config.adaptive_accumulation),
-      last_tick_ns_(std::numeric_limits<TimeNs>::min()) {}
+      last_tick_ns_(std::numeric_limits<TimeNs>::min()),
+      epoch_ns_(epoch_ns) {}
 
 Status RepresentationBuilder::AddEvents(Camera camera, std::span<const Event> events) {
   CameraState& state = camera == Camera::kLeft ? left_ : right_;
@@ -140,8 +141,8 @@ Status RepresentationBuilder::Build(TimeNs t_ns, Observation* out, BuildOptions 
 
   start = Clock::now();
   if (config_.edge_sampling.mode == SamplingMode::kAdaptiveAccumulation) {
-    out->samples =
-        SampleAaMap(aa_, rectification_.left, config_.edge_sampling, TickSeed(config_.seed, t_ns));
+    out->samples = SampleAaMap(aa_, rectification_.left, config_.edge_sampling,
+                               TickSeed(config_.seed, t_ns - epoch_ns_));
   } else {
     out->samples = SelectNewestEvents(recent, t_ns, rectification_.left, config_.edge_sampling);
   }

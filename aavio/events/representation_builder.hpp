@@ -66,6 +66,7 @@ class RepresentationBuilder {
   AdaptiveAccumulator accumulator_;
   AaMap aa_;
   TimeNs last_tick_ns_;
+  TimeNs epoch_ns_;  // ticks' seeds mix in the time since it: shifting every stamp changes none
   cv::Mat padded_, scratch_binary_;  // raw images with a one-pixel zero border
 };
 

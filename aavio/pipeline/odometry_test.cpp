@@ -37,7 +37,8 @@ OdometryConfig RpgPreset() {
 /// `alter_imu` (if given) changes each sample.
 std::vector<OdometryTick> RunMini(const OdometryConfig& config, double blind_from_s = -1.0,
                                   double blind_to_s = -1.0, TimeNs imu_late_ns = 0,
-                                  const std::function<void(imu::ImuSample*)>& alter_imu = {}) {
+                                  const std::function<void(imu::ImuSample*)>& alter_imu = {},
+                                  TimeNs shift_ns = 0) {
   const aavio::testing::SimulatedSequence& r = Mini();
   if (!r.rig || r.packets.empty()) {
     ADD_FAILURE() << "the mini sequence could not be simulated or read";
@@ -46,24 +47,30 @@ std::vector<OdometryTick> RunMini(const OdometryConfig& config, double blind_fro
   std::vector<imu::ImuSample> imu;
   for (const io::SensorPacket& p : r.packets)
     for (imu::ImuSample s : p.imu) {
-      s.t_ns += imu_late_ns;
+      s.t_ns += imu_late_ns + shift_ns;
       if (alter_imu) alter_imu(&s);
       imu.push_back(s);
     }
-  Odometry odometry(*r.rig, config, r.start_ns);
+  Odometry odometry(*r.rig, config, r.start_ns + shift_ns);
   std::vector<OdometryTick> ticks;
   odometry.on_tick = [&](const OdometryTick& t) { ticks.push_back(t); };
   const std::vector<events::Event> none;
+  auto shifted = [shift_ns](std::vector<events::Event> events) {
+    for (events::Event& e : events)
+      e.t_ns += shift_ns;
+    return events;
+  };
   std::size_t next_imu = 0;
   for (const io::SensorPacket& p : r.packets) {
     const double t_s = NsToSeconds(p.t_begin_ns - r.start_ns);
     const bool blind = t_s >= blind_from_s && t_s < blind_to_s;
+    const TimeNs t_end_ns = p.t_end_ns + shift_ns;
     const std::size_t first_imu = next_imu;
-    while (next_imu < imu.size() && imu[next_imu].t_ns < p.t_end_ns)
+    while (next_imu < imu.size() && imu[next_imu].t_ns < t_end_ns)
       ++next_imu;
     const Status s = odometry.Process(
-        blind ? none : p.left, blind ? none : p.right,
-        std::span<const imu::ImuSample>(imu).subspan(first_imu, next_imu - first_imu), p.t_end_ns);
+        blind ? none : shifted(p.left), blind ? none : shifted(p.right),
+        std::span<const imu::ImuSample>(imu).subspan(first_imu, next_imu - first_imu), t_end_ns);
     EXPECT_TRUE(s.ok()) << s.message();
   }
   const Status s = odometry.Finish();
@@ -217,6 +224,24 @@ TEST(Odometry, TheImuTimeOffsetUndoesALateImuClock) {
     differ_untold += untold[i].T_world_cam.R != on_time[i].T_world_cam.R;
   }
   EXPECT_GT(differ_untold, static_cast<int>(on_time.size()) / 2);
+}
+
+TEST(Odometry, ShiftingEveryStampChangesNoPose) {
+  // The same recording on other clocks (up to a UNIX time in ns): the same poses, bit for bit,
+  // at the same times after the start.
+  const std::vector<OdometryTick> base = RunMini(RpgPreset());
+  ASSERT_GT(base.size(), 100u);
+  for (const TimeNs shift_ns : {TimeNs{10'000'000'000}, TimeNs{1'700'000'000'123'456'789}}) {
+    SCOPED_TRACE(shift_ns);
+    const std::vector<OdometryTick> moved = RunMini(RpgPreset(), -1.0, -1.0, 0, {}, shift_ns);
+    ASSERT_EQ(moved.size(), base.size());
+    for (std::size_t i = 0; i < base.size(); ++i) {
+      ASSERT_EQ(moved[i].t_ns - shift_ns, base[i].t_ns);
+      ASSERT_EQ(moved[i].status, base[i].status) << i;
+      ASSERT_EQ(moved[i].T_world_cam.R, base[i].T_world_cam.R) << i;
+      ASSERT_EQ(moved[i].T_world_cam.t, base[i].T_world_cam.t) << i;
+    }
+  }
 }
 
 TEST(Odometry, ATrackTheAccelerometerContradictsIsLostAndMappingRestarts) {

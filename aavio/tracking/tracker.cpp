@@ -114,6 +114,7 @@ bool Tracker::Starved(std::int64_t new_events) const {
 }
 
 void Tracker::Reset(TimeNs t_ns, const geometry::RigidTransform& T_world_cam, bool keep_velocity) {
+  if (!seed_origin_ns_) seed_origin_ns_ = t_ns;
   t_prev_ = t_ns;
   T_prev_ = T_world_cam;
   T_prevprev_.reset();
@@ -192,7 +193,7 @@ TrackingResult Tracker::Track(const events::Observation& obs, const cv::Mat& val
     for (const Eigen::Vector3d& p : map_->points_world)
       points_ref.push_back(T_ref_world * p);
     const Registration registration(points_ref, camera_, config_,
-                                    seed_ ^ static_cast<std::uint64_t>(obs.t_ns));
+                                    seed_ ^ static_cast<std::uint64_t>(obs.t_ns - seed_origin_ns_.value_or(0)));
     const RegistrationImages images{obs.negative_ts_left, obs.grad_u, obs.grad_v, valid_mask};
     const geometry::RigidTransform T_ref_predicted = T_ref_world * predicted;
     std::optional<Eigen::Matrix3d> R_prior;

@@ -100,6 +100,7 @@ class Tracker {
   std::optional<imu::ImuBackEnd> back_end_;  ///< imu.mode full
   TimeNs last_tracked_ns_ = 0;               ///< the last registered (or standing) tick: bridging
   std::uint64_t seed_;
+  std::optional<TimeNs> seed_origin_ns_;  // the first Reset's time: seeds mix in time since it
   std::shared_ptr<const TrackingMap> map_;
   TimeNs t_prev_ = 0;
   geometry::RigidTransform T_prev_;
