@@ -301,16 +301,14 @@ Expected<RunRecord> RunRecorder::Finish(bool interrupted, TimeNs end_ns,
   keep(cloud_file_.Close());
   keep(depth_writer_.Finish());
 
-  // Accuracy against the ground truth (what `aavio eval --run` computes, se3-aligned).
-  // A failed evaluation is said in the summary (accuracy_error), which is written all the same,
-  // and is the run's result.
-  Status evaluation = Status::Ok();
+  // Accuracy against the ground truth (what `aavio eval --run` computes, se3-aligned); why there
+  // is none goes into the summary (accuracy_error), which is written all the same.
   if (truth_ && !trajectory_.empty()) {
     Expected<TrajectoryEvaluation> e = EvaluateTrajectories(trajectory_, gt_poses_, {});
     if (e) {
       record.accuracy = std::move(*e);
     } else {
-      evaluation = e.status().WithContext(truth_->trajectory_path);
+      record.accuracy_error = e.status().WithContext(truth_->trajectory_path);
     }
   }
   if (scorer_) {
@@ -372,7 +370,7 @@ Expected<RunRecord> RunRecorder::Finish(bool interrupted, TimeNs end_ns,
                           {"total_s", st.total_s}};
   }
   if (record.accuracy) s["accuracy"] = TrajectoryEvaluationJson(*record.accuracy);
-  if (!evaluation.ok()) s["accuracy_error"] = evaluation.message();
+  if (!record.accuracy_error.ok()) s["accuracy_error"] = record.accuracy_error.message();
   if (record.depth) s["depth"] = DepthJson(*record.depth);
   if (record.depth && record.sample_ceiling)
     s["depth"]["sample_ceiling"] = CoverageJson(*record.sample_ceiling);
@@ -384,8 +382,6 @@ Expected<RunRecord> RunRecorder::Finish(bool interrupted, TimeNs end_ns,
   s.update(extra);
   keep(io::WriteTextFile((out / run_files::kSummary).string(), s.dump(2) + "\n"));
   if (!failures.empty()) return failures.front();
-  // (An interrupted run's result is the interruption; its summary says why it has no score.)
-  if (!evaluation.ok() && !interrupted) return evaluation;
   return record;
 }
 

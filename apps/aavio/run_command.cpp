@@ -383,9 +383,11 @@ Expected<bool> Run(RunOptions options, Context& ctx) {
                          : ("holds what could be written of it (" + record.status().message() + ")")
                                .c_str()));
   }
-  if (!record) {
-    return Status(record.status().code(),
-                  record.status().message() + "\n" + options.out_dir +
+  if (!record) return record.status();
+  // No score where one was due is an error (an interrupted run's result is the interruption).
+  if (!record->accuracy_error.ok() && !fed.interrupted) {
+    return Status(record->accuracy_error.code(),
+                  record->accuracy_error.message() + "\n" + options.out_dir +
                       " holds the run's outputs; its summary.json says why it has no accuracy");
   }
   if (recorder.trajectory().empty() && !fed.interrupted && !options.gt_poses) {
