@@ -134,8 +134,8 @@ TEST(SimulationWorld, AStretchAfterTheEndIsAClearError) {
     request.preset = "mini";
     request.duration_s = 1.0;
     request.disturbances = {{kind, 5.0, 1.0, 4.0}};
-    EXPECT_NE(request.Validate().message().find(
-                  "a stretch from 5 s starts after the sequence ends (1 s) and would change nothing"),
+    EXPECT_NE(request.Validate().message().find("a stretch from 5 s starts after the sequence "
+                                                "ends (1 s) and would change nothing"),
               std::string::npos)
         << request.Validate().message();
     request.disturbances = {{kind, 0.9, 1.0, 4.0}};  // starts within it: fine

@@ -192,8 +192,9 @@ TrackingResult Tracker::Track(const events::Observation& obs, const cv::Mat& val
     points_ref.reserve(map_->points_world.size());
     for (const Eigen::Vector3d& p : map_->points_world)
       points_ref.push_back(T_ref_world * p);
+    const TimeNs since_origin_ns = obs.t_ns - seed_origin_ns_.value_or(0);
     const Registration registration(points_ref, camera_, config_,
-                                    seed_ ^ static_cast<std::uint64_t>(obs.t_ns - seed_origin_ns_.value_or(0)));
+                                    seed_ ^ static_cast<std::uint64_t>(since_origin_ns));
     const RegistrationImages images{obs.negative_ts_left, obs.grad_u, obs.grad_v, valid_mask};
     const geometry::RigidTransform T_ref_predicted = T_ref_world * predicted;
     std::optional<Eigen::Matrix3d> R_prior;
