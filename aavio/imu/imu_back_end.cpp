@@ -40,7 +40,6 @@ constexpr double kRestSpeed = 0.5, kRestGyroRadS = 0.03, kRestAccelStd = 0.15,
 constexpr double kWindowS = 2.0, kFrameIntervalS = 0.05;
 constexpr int kMinFrames = 8;
 constexpr double kLongTermS = 20.0;  // the biases' and gravity's memory [s]
-constexpr double kGravity = 9.81;    // m/s²
 constexpr int kIterations = 3;       // from the previous frame's solution
 
 // The weight of a pair's residuals: the inverse of the pre-integration's covariance plus the two
@@ -169,8 +168,9 @@ void ImuBackEnd::Solve() {
   if (lt.solves <= 1) lt.gravity_world = state_.gravity_world;
   lt.gyro_bias += gain * (state_.gyro_bias - lt.gyro_bias);
   lt.accel_bias += gain * (state_.accel_bias - lt.accel_bias);
-  lt.gravity_world =
-      kGravity * (lt.gravity_world + gain * (state_.gravity_world - lt.gravity_world)).normalized();
+  const Eigen::Vector3d gravity_moved =
+      lt.gravity_world + gain * (state_.gravity_world - lt.gravity_world);
+  lt.gravity_world = kGravityMS2 * gravity_moved.normalized();
   // The velocities that go with them.
   state_.gyro_bias = lt.gyro_bias;
   state_.accel_bias = lt.accel_bias;
@@ -228,8 +228,8 @@ bool ImuBackEnd::InitialiseGravityAndVelocities() {
   const Eigen::VectorXd x = ldlt.solve(b);
   if (!x.allFinite()) return false;
   const Eigen::Vector3d gravity = x.segment<3>(g);
-  if (std::abs(gravity.norm() - kGravity) > kMaxGravityError) return false;
-  state_.gravity_world = gravity.normalized() * kGravity;
+  if (std::abs(gravity.norm() - kGravityMS2) > kMaxGravityError) return false;
+  state_.gravity_world = gravity.normalized() * kGravityMS2;
   for (int k = 0; k < n; ++k)
     frames_[k].v_world = x.segment<3>(3 * k);
   return true;
@@ -252,7 +252,7 @@ double ImuBackEnd::GaussNewtonStep(bool fix_biases_and_gravity) {
       }
     }
   }
-  const double G = kGravity;
+  const double G = kGravityMS2;
   const Eigen::Vector3d u = state_.gravity_world / G;
   const Eigen::Matrix<double, 3, 2> dg_ddelta = -G * Hat(u) * TangentBasis(u);
   Eigen::MatrixXd H = Eigen::MatrixXd::Zero(unknowns, unknowns);
@@ -365,7 +365,7 @@ bool ImuBackEnd::AtRest(TimeNs t_begin_ns, TimeNs t_end_ns) const {
   const Eigen::Vector3d var = sum2 / n - mean.cwiseProduct(mean);
   return (gyro / n - state_.gyro_bias).norm() < kRestGyroRadS &&
          var.maxCoeff() < kRestAccelStd * kRestAccelStd &&
-         std::abs((mean - state_.accel_bias).norm() - kGravity) < kRestAccelMeanMs2;
+         std::abs((mean - state_.accel_bias).norm() - kGravityMS2) < kRestAccelMeanMs2;
 }
 
 }  // namespace aavio::imu

@@ -7,6 +7,9 @@
 
 namespace aavio::imu {
 
+/// Gravity's magnitude the IMU code assumes [m/s²].
+inline constexpr double kGravityMS2 = 9.81;
+
 struct ImuSample {
   TimeNs t_ns = 0;
   Eigen::Vector3d gyro_rad_s = Eigen::Vector3d::Zero();  ///< angular velocity

@@ -6,9 +6,6 @@
 #include "aavio/imu/imu_preintegration.hpp"
 
 namespace aavio::imu {
-namespace {
-constexpr double kGravityMS2 = 9.81;
-}  // namespace
 
 InertialCheck::InertialCheck(const geometry::RigidTransform& T_imu_cam)
     : T_cam_imu_(T_imu_cam.Inverse()) {}

@@ -8,7 +8,6 @@ namespace {
 constexpr TimeNs kWindowNs = 100'000'000;    // 0.1 s
 constexpr double kTurningRadS = 3.0 * M_PI / 180.0;
 constexpr double kAcceleratingMS2 = 1.0;
-constexpr double kGravityMS2 = 9.81;
 }  // namespace
 
 void MotionEvidence::Add(std::span<const ImuSample> samples) {
