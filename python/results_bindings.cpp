@@ -3,11 +3,10 @@
 #include <pybind11/stl.h>
 
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
 #include "aavio/eval/alignment.hpp"
+#include "aavio/io/file_checks.hpp"
 #include "aavio/io/ply.hpp"
 #include "aavio/io/trajectory_io.hpp"
 #include "aavio/recording/run_evaluation.hpp"
@@ -69,11 +68,9 @@ py::dict Evaluate(const py::object& estimate, const py::object& ground_truth,
 }
 
 std::string ReadText(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  if (!in) return "";
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) return "";
+  return Unwrap(io::ReadBoundedFile(path.string(), io::kMaxSettingsFileBytes, "run file"));
 }
 
 py::dict LoadRun(const std::string& folder) {

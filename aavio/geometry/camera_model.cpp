@@ -3,6 +3,8 @@
 #include <Eigen/LU>
 #include <cmath>
 
+#include "aavio/common/format.hpp"
+
 namespace aavio::geometry {
 
 const char* DistortionModelName(DistortionModel model) {
@@ -16,6 +18,55 @@ const char* DistortionModelName(DistortionModel model) {
   }
   return "?";
 }
+
+namespace {
+
+/// The distortion must map the whole image one to one, and not by a factor no lens has: the
+/// image's corners and edge midpoints must undistort, the map must keep its orientation on the way
+/// out to them, and (for plumb_bob) their distance from the centre may change at most 3-fold.
+Status CheckDistortionOverImage(const CameraModel& model) {
+  if (model.model() == DistortionModel::kNone) return Status::Ok();
+  const CameraIntrinsics& in = model.intrinsics();
+  std::string coeffs;
+  for (double c : in.coeffs)
+    coeffs += (coeffs.empty() ? "" : ", ") + StrFormat("%g", c);
+  const std::string which =
+      std::string(DistortionModelName(in.model)) + " distortion [" + coeffs + "]";
+  const double w = in.width, h = in.height;
+  for (const Eigen::Vector2d& pixel :
+       {Eigen::Vector2d(0, 0), Eigen::Vector2d(w, 0), Eigen::Vector2d(0, h), Eigen::Vector2d(w, h),
+        Eigen::Vector2d(w / 2, 0), Eigen::Vector2d(w / 2, h), Eigen::Vector2d(0, h / 2),
+        Eigen::Vector2d(w, h / 2)}) {
+    const Eigen::Vector2d xd((pixel.x() - in.cx) / in.fx, (pixel.y() - in.cy) / in.fy);
+    Eigen::Vector2d xn;
+    const std::string at = StrFormat("pixel (%g, %g)", pixel.x(), pixel.y());
+    if (!model.Undistort(xd, &xn)) {
+      return InvalidArgument(which + " cannot be inverted at " + at +
+                             ": no lens maps the image like this; check the coefficients' order "
+                             "(k1 k2 p1 p2 [k3] for plumb_bob, k1..k4 for equidistant)");
+    }
+    for (int step = 1; step <= 16; ++step) {
+      Eigen::Matrix2d J;
+      model.Distort(xn * (step / 16.0), &J);
+      if (!(J.determinant() > 0.0)) {
+        return InvalidArgument(which + " folds the image over itself between the centre and " + at +
+                               "; check the coefficients' order and signs");
+      }
+    }
+    const double ratio = xn.norm() / std::max(xd.norm(), 1e-9);
+    if (in.model == DistortionModel::kRadtan && xd.norm() > 1e-3 &&
+        !(ratio < 3.0 && ratio > 1.0 / 3.0)) {
+      return InvalidArgument(which + " moves " + at +
+                             StrFormat(" %.1f-fold", ratio > 1.0 ? ratio : 1.0 / ratio) +
+                             (ratio > 1.0 ? " away from" : " towards") +
+                             " the centre; no lens distorts that much: check the coefficients' "
+                             "order (k1 k2 p1 p2 [k3]) and that they are not in pixels");
+    }
+  }
+  return Status::Ok();
+}
+
+}  // namespace
 
 Expected<CameraModel> CameraModel::Create(CameraIntrinsics in) {
   if (in.width <= 0 || in.height <= 0 || in.width > 100000 || in.height > 100000) {
@@ -58,7 +109,9 @@ Expected<CameraModel> CameraModel::Create(CameraIntrinsics in) {
       }
       break;
   }
-  return CameraModel(std::move(in));
+  CameraModel model(std::move(in));
+  AAVIO_RETURN_IF_ERROR(CheckDistortionOverImage(model));
+  return model;
 }
 
 Eigen::Vector2d CameraModel::Distort(const Eigen::Vector2d& xn, Eigen::Matrix2d* J) const {

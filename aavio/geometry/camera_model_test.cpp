@@ -79,11 +79,26 @@ TEST(CameraModel, PointsBehindTheCameraDoNotProject) {
 
 TEST(CameraModel, UndistortReportsNonConvergence) {
   // r (1 − 0.5 r²) peaks at 0.544 for r = 0.816: a distorted radius beyond that has no preimage.
+  // A 30×30 image keeps its corners (radius 0.42) inside the invertible part.
   const CameraModel cam = *CameraModel::Create(
-      {100, 100, 50, 50, 50, 50, DistortionModel::kRadtan, {-0.5, 0.0, 0.0, 0.0}});
+      {30, 30, 50, 50, 15, 15, DistortionModel::kRadtan, {-0.5, 0.0, 0.0, 0.0}});
   Eigen::Vector2d xn;
   EXPECT_FALSE(cam.Undistort(Eigen::Vector2d(0.7, 0.0), &xn));
   EXPECT_TRUE(cam.Undistort(Eigen::Vector2d(0.4, 0.0), &xn));
+}
+
+TEST(CameraModel, CreateRejectsADistortionNoLensHas) {
+  auto refused = [](int size, std::vector<double> coeffs) {
+    return CameraModel::Create({size, size, 50, 50, size / 2.0, size / 2.0,
+                                DistortionModel::kRadtan, std::move(coeffs)})
+        .status()
+        .message();
+  };
+  // The 100×100 image reaches radius 1.41, past the peak of r (1 − 0.5 r²).
+  EXPECT_NE(refused(100, {-0.5, 0, 0, 0}).find("cannot be inverted at pixel"), std::string::npos);
+  EXPECT_NE(refused(100, {100, 100, 0, 0}).find("fold towards the centre"), std::string::npos)
+      << refused(100, {100, 100, 0, 0});
+  EXPECT_EQ(refused(100, {-0.3, 0.1, 0.001, 0.001}), "");  // a DAVIS lens
 }
 
 TEST(CameraModel, CreateRejectsBadIntrinsics) {

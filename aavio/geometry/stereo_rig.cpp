@@ -74,6 +74,15 @@ Expected<StereoRig> StereoRig::Create(StereoRigParams p, std::vector<std::string
 
   const Eigen::Vector3d centre = p.P_right.leftCols<3>().inverse() * p.P_right.col(3);
   const double baseline_m = centre.norm();
+  // 5 mm to 5 m covers every stereo event rig (DAVIS pairs 0.1 m, cars 0.6 m); outside it a unit is
+  // wrong, most often P(0,3) written in millimetres or without the focal length.
+  if (!(baseline_m >= 0.005 && baseline_m <= 5.0)) {
+    return InvalidArgument(
+        "right projection matrix gives a baseline of " + StrFormat("%g m", baseline_m) +
+        " (P(0,3) = " + StrFormat("%g", p.P_right(0, 3)) +
+        " = −f·baseline), outside the 5 mm – 5 m of a stereo rig; P(0,3) must be in pixels "
+        "times metres");
+  }
 
   p.R_rect_left_left = Orthonormalize(p.R_rect_left_left);
   p.R_rect_right_right = Orthonormalize(p.R_rect_right_right);

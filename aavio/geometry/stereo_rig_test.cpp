@@ -87,6 +87,12 @@ TEST(StereoRig, RejectsInconsistentRigs) {
   EXPECT_NE(
       error([](StereoRigParams& p) { p.P_right(0, 3) = 23.2327; }).find("swap the left and right"),
       std::string::npos);
+  // A baseline in the wrong unit: 1e-12 m, or P(0,3) in millimetres (148 m).
+  EXPECT_NE(error([](StereoRigParams& p) { p.P_right(0, 3) = -1e-10; }).find("outside the 5 mm"),
+            std::string::npos);
+  EXPECT_NE(
+      error([](StereoRigParams& p) { p.P_right(0, 3) *= 1000.0; }).find("pixels times metres"),
+      std::string::npos);
   EXPECT_NE(error([](StereoRigParams& p) { p.P_right(1, 3) = -5.0; }).find("vertical stereo rig"),
             std::string::npos);
   EXPECT_NE(error([](StereoRigParams& p) { p.P_right(0, 0) = 150.0; }).find("not rectified"),

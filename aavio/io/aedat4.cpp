@@ -14,6 +14,7 @@
 
 #include "aavio/common/format.hpp"
 #include "aavio/io/decompression.hpp"
+#include "aavio/io/file_checks.hpp"
 
 namespace aavio::io {
 
@@ -161,6 +162,7 @@ struct Aedat4File {
 
   /// Header, stream choice (`type` and the user's `wanted`), and the packet index.
   Status Index(const std::string& type, const std::string& wanted) {
+    AAVIO_RETURN_IF_ERROR(CheckRegularFile(path, "AEDAT4 file"));
     file = std::fopen(path.c_str(), "rb");
     if (!file) return NotFound(path + ": cannot open the AEDAT4 file");
     char magic[kMagic.size()];

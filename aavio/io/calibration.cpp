@@ -2,6 +2,7 @@
 
 #include <filesystem>
 
+#include "aavio/io/file_checks.hpp"
 #include "aavio/io/yaml_reading.hpp"
 
 namespace aavio::io {
@@ -10,9 +11,11 @@ namespace fs = std::filesystem;
 
 namespace {
 
-bool IsFile(const fs::path& p) {
+/// Something is there under this name, whatever it is (the reader then says if it is no file).
+bool Present(const fs::path& p) {
   std::error_code ec;
-  return fs::is_regular_file(p, ec);
+  const fs::file_type type = fs::symlink_status(p, ec).type();
+  return type != fs::file_type::not_found && type != fs::file_type::none;
 }
 
 /// DSEC's cam_to_cam.yaml has top-level `intrinsics` and `extrinsics`; ESVO files `camera_matrix`.
@@ -26,19 +29,20 @@ bool LooksLikeDsec(const std::string& file) {
 Expected<LoadedCalibration> LoadCalibration(const std::string& path) {
   std::error_code ec;
   const fs::path p(path);
-  if (!fs::exists(p, ec)) return NotFound(path + ": no such file or folder");
+  if (!Present(p)) return NotFound(path + ": no such file or folder");
   if (fs::is_directory(p, ec)) {
-    if (IsFile(p / "left.yaml") && IsFile(p / "right.yaml")) {
+    if (Present(p / "left.yaml") && Present(p / "right.yaml")) {
       return LoadEsvoCalibration((p / "left.yaml").string(), (p / "right.yaml").string());
     }
     for (const fs::path& candidate :
          {p / "cam_to_cam.yaml", p / "calibration" / "cam_to_cam.yaml"}) {
-      if (IsFile(candidate)) return LoadDsecCalibration(candidate.string());
+      if (Present(candidate)) return LoadDsecCalibration(candidate.string());
     }
     return NotFound(path +
                     ": no calibration here; expected left.yaml + right.yaml (ESVO), "
                     "cam_to_cam.yaml or calibration/cam_to_cam.yaml (DSEC)");
   }
+  AAVIO_RETURN_IF_ERROR(CheckRegularFile(path, "calibration file"));
   if (LooksLikeDsec(path)) return LoadDsecCalibration(path);
   // ESVO: either file of the pair; the other one sits beside it.
   const std::string name = p.filename().string();
@@ -49,7 +53,7 @@ Expected<LoadedCalibration> LoadCalibration(const std::string& path) {
     other.replace(other.find(is_left ? "left" : "right"), is_left ? 4 : 5,
                   is_left ? "right" : "left");
     const fs::path other_path = dir / other;
-    if (!IsFile(other_path)) {
+    if (!Present(other_path)) {
       return NotFound(path + ": an ESVO calibration needs both cameras, but " +
                       other_path.string() + " does not exist");
     }

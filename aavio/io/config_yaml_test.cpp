@@ -62,6 +62,14 @@ TEST(ConfigYaml, UnknownKeysAndBadValuesNameFileAndLine) {
       << s.message();
 }
 
+TEST(ConfigYaml, AKeyGivenTwiceIsRefusedWithBothLines) {
+  const Expected<std::vector<ConfigEntry>> twice =
+      ParseConfigYaml("mapping:\n  rate_hz: 10\n  eta: 0.1\n  rate_hz: 20\n", "c.yaml");
+  ASSERT_FALSE(twice.ok());
+  EXPECT_EQ(twice.status().message(),
+            "c.yaml:4: key 'rate_hz' is given twice (first on line 2); keep one");
+}
+
 TEST(ConfigYaml, WrittenConfigReadsBackIdentically) {
   pipeline::OdometryConfig config;
   config.mapping.eta = 0.123456789;

@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "aavio/common/format.hpp"
+#include "aavio/io/file_checks.hpp"
 #include "aavio/io/hdf5_util.hpp"
 
 namespace aavio::io {
@@ -126,8 +127,7 @@ DsecH5EventStream::~DsecH5EventStream() = default;
 Expected<std::unique_ptr<DsecH5EventStream>> DsecH5EventStream::Open(const std::string& path,
                                                                      const StreamOptions& options) {
   h5::SilenceErrorPrinting();
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) return NotFound(path + ": no such file");
+  AAVIO_RETURN_IF_ERROR(CheckRegularFile(path, "DSEC events file"));
   if (H5Fis_hdf5(path.c_str()) <= 0) {
     const std::string detail = h5::TakeErrorMessage();
     return ParseError(path + ": not a readable HDF5 file (truncated or not HDF5" +
@@ -345,8 +345,7 @@ Expected<cv::Mat> ReadRectifyMapHere(const std::string& path) {
 
 Expected<cv::Mat> ReadDsecRectifyMap(const std::string& path) {
   h5::SilenceErrorPrinting();
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) return NotFound(path + ": no such file");
+  AAVIO_RETURN_IF_ERROR(CheckRegularFile(path, "DSEC rectification map"));
   if (H5Fis_hdf5(path.c_str()) <= 0) {
     h5::TakeErrorMessage();
     return ParseError(path + ": not a readable HDF5 file (truncated or not HDF5)");

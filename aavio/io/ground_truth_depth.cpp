@@ -1,21 +1,27 @@
 #include "aavio/io/ground_truth_depth.hpp"
 
 #include <filesystem>
-#include <fstream>
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
 
 #include "aavio/common/format.hpp"
+#include "aavio/io/file_checks.hpp"
 
 namespace aavio::io {
 
 namespace fs = std::filesystem;
 
+namespace {
+constexpr char kUndecodable[] =
+    ": cannot be decoded as an image (corrupt or truncated?); re-extract the ground truth";
+}  // namespace
+
 Expected<std::vector<GtDepthEntry>> ReadGtDepthIndex(const std::string& dir) {
   const std::string path = (fs::path(dir) / "timestamps.txt").string();
-  std::ifstream in(path);
-  if (!in)
-    return NotFound(path + ": cannot open (a ground-truth depth folder needs timestamps.txt)");
+  Expected<std::string> text =
+      ReadBoundedFile(path, kMaxSettingsFileBytes, "ground-truth depth index (timestamps.txt)");
+  if (!text) return text.status();
+  std::istringstream in(*text);
   std::vector<GtDepthEntry> entries;
   std::string line;
   int number = 0;
@@ -26,7 +32,7 @@ Expected<std::vector<GtDepthEntry>> ReadGtDepthIndex(const std::string& dir) {
     std::string t, index;
     if (!(fields >> t >> index)) {
       return ParseError(StrFormat("%s:%d: expected \"t[s] index\", got \"%s\"", path.c_str(),
-                                  number, line.c_str()));
+                                  number, PrintableExcerpt(line).c_str()));
     }
     Expected<TimeNs> t_ns = ParseSecondsToNs(t);
     if (!t_ns) return t_ns.status().WithContext(StrFormat("%s:%d", path.c_str(), number));
@@ -58,13 +64,17 @@ Expected<GtDepthFrame> LoadGtDepthFrame(const std::string& dir, const GtDepthEnt
   const fs::path tiff = fs::path(dir) / ("depth_" + entry.index + ".tiff");
   const fs::path png = fs::path(dir) / ("disparity_" + entry.index + ".png");
   if (fs::exists(tiff)) {
+    AAVIO_RETURN_IF_ERROR(CheckRegularFile(tiff.string(), "ground-truth depth image"));
     frame.depth_m = cv::imread(tiff.string(), cv::IMREAD_UNCHANGED);
+    if (frame.depth_m.empty()) return ParseError(tiff.string() + kUndecodable);
     if (frame.depth_m.type() != CV_32FC1) {
       return ParseError(tiff.string() + ": expected a single-channel 32-bit float image (metres)");
     }
   } else if (fs::exists(png)) {
     if (fb <= 0.0) return InvalidArgument(png.string() + ": disparity needs the rig's f·b");
+    AAVIO_RETURN_IF_ERROR(CheckRegularFile(png.string(), "ground-truth disparity image"));
     const cv::Mat disparity = cv::imread(png.string(), cv::IMREAD_UNCHANGED);
+    if (disparity.empty()) return ParseError(png.string() + kUndecodable);
     if (disparity.type() != CV_16UC1) {
       return ParseError(png.string() + ": expected a 16-bit single-channel PNG (disparity × 256)");
     }

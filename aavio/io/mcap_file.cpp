@@ -5,6 +5,7 @@
 
 #include "aavio/common/format.hpp"
 #include "aavio/io/decompression.hpp"
+#include "aavio/io/file_checks.hpp"
 
 namespace aavio::io {
 
@@ -64,6 +65,7 @@ Status McapReader::Fail(std::int64_t at, const std::string& what) const {
 }
 
 Expected<std::unique_ptr<McapReader>> McapReader::Open(const std::string& path) {
+  AAVIO_RETURN_IF_ERROR(CheckRegularFile(path, "MCAP file"));
   auto r = std::unique_ptr<McapReader>(new McapReader());
   r->path_ = path;
   r->file_ = std::fopen(path.c_str(), "rb");

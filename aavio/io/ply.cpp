@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "aavio/common/format.hpp"
+#include "aavio/io/file_checks.hpp"
 
 namespace aavio::io {
 namespace {
@@ -135,6 +136,7 @@ Status PlyWriter::Close() {
 }
 
 Expected<ColouredCloud> ReadPly(const std::string& path) {
+  AAVIO_RETURN_IF_ERROR(CheckRegularFile(path, "PLY point cloud"));
   std::ifstream in(path, std::ios::binary);
   if (!in) return NotFound(path + ": cannot open");
   std::string line;

@@ -6,6 +6,7 @@
 
 #include "aavio/common/format.hpp"
 #include "aavio/io/event_codecs.hpp"
+#include "aavio/io/file_checks.hpp"
 
 namespace aavio::io {
 
@@ -154,6 +155,7 @@ PropheseeRawEventStream::~PropheseeRawEventStream() = default;
 
 Expected<std::unique_ptr<PropheseeRawEventStream>> PropheseeRawEventStream::Open(
     const std::string& path, const StreamOptions& options) {
+  AAVIO_RETURN_IF_ERROR(CheckRegularFile(path, "Prophesee RAW file"));
   auto s = std::make_unique<State>();
   s->path = path;
   s->file = std::fopen(path.c_str(), "rb");

@@ -9,6 +9,7 @@
 
 #include "aavio/common/format.hpp"
 #include "aavio/io/event_codecs.hpp"
+#include "aavio/io/file_checks.hpp"
 #include "aavio/io/mcap_file.hpp"
 
 namespace aavio::io {
@@ -141,6 +142,7 @@ class Db final : public Storage {
     if (db_) sqlite3_close(db_);
   }
   Status Open(const std::string& path) {
+    AAVIO_RETURN_IF_ERROR(CheckRegularFile(path, "ROS 2 bag storage file"));
     path_ = path;
     if (sqlite3_open_v2(path.c_str(), &db_, SQLITE_OPEN_READONLY, nullptr) != SQLITE_OK) {
       return IoError(path + ": cannot open as sqlite3 (" + sqlite3_errmsg(db_) + ")");

@@ -8,6 +8,7 @@
 #include <string_view>
 
 #include "aavio/io/decompression.hpp"
+#include "aavio/io/file_checks.hpp"
 
 namespace aavio::io::rosbag {
 
@@ -132,8 +133,8 @@ std::uint64_t BagFile::MessageCount(std::uint32_t connection) const {
 }
 
 Expected<std::unique_ptr<BagFile>> BagFile::Open(const std::string& path) {
+  AAVIO_RETURN_IF_ERROR(CheckRegularFile(path, "ROS bag"));
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) return NotFound(path + ": no such file");
   std::unique_ptr<BagFile> bag(new BagFile());
   bag->path_ = path;
   bag->file_size_ = std::filesystem::file_size(path, ec);

@@ -109,8 +109,17 @@ Expected<SequenceDescription> ReadSequenceYaml(const std::string& path) {
     Expected<SourceFormat> format = DetectSourceFormat(spec->path);
     if (!format) return format.status().WithContext(path);
     spec->format = *format;
-    spec->topic = Scalar(*events, (std::string(side) + "_topic").c_str());
-    if (spec->topic.empty() && spec->format != SourceFormat::kAedat4)
+    const std::string topic_key = std::string(side) + "_topic";
+    spec->topic = Scalar(*events, topic_key.c_str());
+    const bool has_topics = spec->format == SourceFormat::kBag ||
+                            spec->format == SourceFormat::kRos2Bag ||
+                            spec->format == SourceFormat::kAedat4;
+    if (!has_topics && !spec->topic.empty()) {
+      return InvalidArgument(path + ": events." + topic_key + " names a topic, but " + spec->path +
+                             " is a " + SourceFormatName(spec->format) +
+                             " file, which has none; remove the key");
+    }
+    if (spec->topic.empty() && has_topics && spec->format != SourceFormat::kAedat4)
       spec->topic = std::string("/davis/") + side + "/events";
   }
   if (YAML::Node imu = (*root)["imu"]) {
@@ -126,6 +135,10 @@ Expected<SequenceDescription> ReadSequenceYaml(const std::string& path) {
     }
     spec.format = *format;
     spec.topic = Scalar(imu, "topic");
+    if (spec.format == SourceFormat::kText && !spec.topic.empty()) {
+      return InvalidArgument(path + ": imu.topic names a topic, but " + spec.path +
+                             " is a text file, which has none; remove the key");
+    }
     const std::string layout = Scalar(imu, "layout");
     if (layout == "tum_vie") {
       spec.imu_layout = ImuTextLayout::kTumVie;
@@ -145,6 +158,10 @@ Expected<SequenceDescription> ReadSequenceYaml(const std::string& path) {
       }
       spec.format = *format;
       spec.topic = Scalar(gt, "topic");
+      if (spec.format == SourceFormat::kText && !spec.topic.empty()) {
+        return InvalidArgument(path + ": ground_truth.topic names a topic, but " + spec.path +
+                               " is a text file, which has none; remove the key");
+      }
       d.gt_trajectory = spec;
     }
     d.gt_depth = Resolve(base, Scalar(gt, "depth"));
@@ -303,6 +320,13 @@ Expected<std::unique_ptr<SequenceReader>> SequenceReader::Open(
     const SequenceDescription& d, const SequenceReaderOptions& options) {
   if (options.packet_ns <= 0) return InvalidArgument("packet length must be positive");
   if (options.passes < 1) return InvalidArgument("passes must be at least 1");
+  std::error_code ec;
+  if (d.left.topic == d.right.topic && fs::equivalent(d.left.path, d.right.path, ec)) {
+    return InvalidArgument((d.origin.empty() ? d.left.path : d.origin) +
+                           ": the left and the right camera both read " + d.left.path +
+                           (d.left.topic.empty() ? "" : " topic " + d.left.topic) +
+                           "; each camera needs its own events");
+  }
   Expected<std::unique_ptr<EventStream>> left = OpenEventStream(d.left, options.stream);
   if (!left) return left.status();
   Expected<std::unique_ptr<EventStream>> right = OpenEventStream(d.right, options.stream);

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
 #include "tests/event_fixtures.hpp"
 #include "tests/fixtures/calibrations.hpp"
 #include "tests/test_utils.hpp"
@@ -64,10 +66,29 @@ TEST(Sequence, ReadsASequenceYamlWithRelativePaths) {
   EXPECT_EQ(imu, testing::ExpectedImu("bag_lz4").size());
 }
 
+TEST(Sequence, OneFileForBothCamerasIsRefused) {
+  SequenceDescription d;
+  d.origin = "seq/sequence.yaml";
+  d.left = {SourceFormat::kDsecH5, Fixture("dsec_blosc.h5"), "", {}};
+  d.right = d.left;
+  const Status refused = SequenceReader::Open(d, {}).status();
+  EXPECT_NE(refused.message().find("seq/sequence.yaml: the left and the right camera both read"),
+            std::string::npos)
+      << refused.message();
+  // One bag holds both cameras under two topics.
+  d.left = {SourceFormat::kBag, Fixture("bag_lz4.bag"), "/davis/left/events", {}};
+  d.right = {SourceFormat::kBag, Fixture("bag_lz4.bag"), "/davis/right/events", {}};
+  EXPECT_TRUE(SequenceReader::Open(d, {}).ok());
+}
+
 TEST(Sequence, PassesRepeatTheSequenceOnAContinuingClock) {
   SequenceDescription d;
   d.left = {SourceFormat::kDsecH5, Fixture("dsec_blosc.h5"), "", {}};
+  // The same events from a second file: one file for both cameras is refused.
   d.right = d.left;
+  d.right.path = ::testing::TempDir() + "/repeat_right.h5";
+  std::filesystem::copy_file(d.left.path, d.right.path,
+                             std::filesystem::copy_options::overwrite_existing);
   const SequenceReaderOptions options{.packet_ns = 10 * kNsPerMs, .passes = 3};
   Expected<std::unique_ptr<SequenceReader>> reader = SequenceReader::Open(d, options);
   ASSERT_TRUE(reader.ok()) << reader.status().message();

@@ -8,6 +8,7 @@
 #include <filesystem>
 
 #include "aavio/common/format.hpp"
+#include "aavio/io/file_checks.hpp"
 
 namespace aavio::io {
 
@@ -46,6 +47,7 @@ bool ParseNumber(std::string_view text, T* value) {
 class LineReader {
  public:
   Status Open(const std::string& path) {
+    AAVIO_RETURN_IF_ERROR(CheckRegularFile(path, "text data file"));
     path_ = path;
     file_ = std::fopen(path.c_str(), "rb");
     if (!file_) return NotFound(path + ": cannot open");

@@ -4,11 +4,10 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
-#include <sstream>
 #include <string_view>
 
 #include "aavio/io/config_yaml.hpp"
+#include "aavio/io/file_checks.hpp"
 
 namespace aavio::io {
 
@@ -16,10 +15,6 @@ namespace {
 
 bool IsSeparator(char c) {
   return c == ' ' || c == '\t' || c == ',' || c == '\r';
-}
-
-std::string Shorten(std::string_view line) {
-  return std::string(line.substr(0, 80)) + (line.size() > 80 ? "..." : "");
 }
 
 }  // namespace
@@ -57,7 +52,7 @@ Expected<std::vector<geometry::StampedPose>> ParseTumTrajectory(const std::strin
     }
     if (count != 8) {
       return ParseError(where + ": expected 8 columns 'timestamp tx ty tz qx qy qz qw', found " +
-                        std::to_string(count) + ": '" + Shorten(line) + "'");
+                        std::to_string(count) + ": '" + PrintableExcerpt(line) + "'");
     }
     Expected<TimeNs> t_ns = ParseSecondsToNs(fields[0]);
     if (!t_ns) return ParseError(where + ": " + t_ns.status().message());
@@ -68,7 +63,7 @@ Expected<std::vector<geometry::StampedPose>> ParseTumTrajectory(const std::strin
       if (ec != std::errc() || ptr != f.data() + f.size() || !std::isfinite(v[k])) {
         static constexpr std::array<const char*, 7> kNames = {"tx", "ty", "tz", "qx",
                                                               "qy", "qz", "qw"};
-        return ParseError(where + ": " + kNames[k] + " = '" + std::string(f) +
+        return ParseError(where + ": " + kNames[k] + " = '" + PrintableExcerpt(f, 40) +
                           "' is not a finite number");
       }
     }
@@ -98,11 +93,9 @@ Expected<std::vector<geometry::StampedPose>> ParseTumTrajectory(const std::strin
 }
 
 Expected<std::vector<geometry::StampedPose>> ReadTumTrajectory(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return NotFound(path + ": cannot open trajectory file");
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return ParseTumTrajectory(buffer.str(), path);
+  Expected<std::string> text = ReadBoundedFile(path, kMaxTrajectoryFileBytes, "trajectory file");
+  if (!text) return text.status();
+  return ParseTumTrajectory(*text, path);
 }
 
 std::string FormatTumPose(const geometry::StampedPose& pose) {

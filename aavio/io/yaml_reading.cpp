@@ -2,9 +2,9 @@
 
 #include <charconv>
 #include <cmath>
-#include <filesystem>
-#include <fstream>
-#include <sstream>
+#include <map>
+
+#include "aavio/io/file_checks.hpp"
 
 namespace aavio::io::yaml {
 
@@ -12,6 +12,30 @@ namespace {
 
 std::string ShapeText(int rows, int cols) {
   return std::to_string(rows) + "x" + std::to_string(cols);
+}
+
+/// A key given twice in one mapping: YAML forbids it, and the parser would keep the first silently.
+Status CheckDuplicateKeys(const YAML::Node& node, const std::string& origin, int depth = 0) {
+  if (depth > 64) return ParseError(origin + ": nested more than 64 levels deep");
+  if (node.IsSequence()) {
+    for (const YAML::Node& item : node)
+      AAVIO_RETURN_IF_ERROR(CheckDuplicateKeys(item, origin, depth + 1));
+  } else if (node.IsMap()) {
+    std::map<std::string, int> lines;
+    for (const auto& pair : node) {
+      if (pair.first.IsScalar()) {
+        const int line = pair.first.Mark().line + 1;
+        auto [it, inserted] = lines.emplace(pair.first.Scalar(), line);
+        if (!inserted) {
+          return ParseError(origin + ":" + std::to_string(line) + ": key '" + pair.first.Scalar() +
+                            "' is given twice (first on line " + std::to_string(it->second) +
+                            "); keep one");
+        }
+      }
+      AAVIO_RETURN_IF_ERROR(CheckDuplicateKeys(pair.second, origin, depth + 1));
+    }
+  }
+  return Status::Ok();
 }
 
 }  // namespace
@@ -23,6 +47,7 @@ Expected<YAML::Node> LoadText(const std::string& text, const std::string& origin
     if (!root.IsMap()) {
       return ParseError(Where(origin, root) + ": expected a mapping of keys at the top level");
     }
+    AAVIO_RETURN_IF_ERROR(CheckDuplicateKeys(root, origin));
     return root;
   } catch (const YAML::Exception& e) {
     return ParseError(origin + ":" + std::to_string(e.mark.line + 1) + ":" +
@@ -31,14 +56,9 @@ Expected<YAML::Node> LoadText(const std::string& text, const std::string& origin
 }
 
 Expected<YAML::Node> LoadFile(const std::string& path) {
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) return NotFound(path + ": no such file");
-  if (std::filesystem::is_directory(path, ec)) return InvalidArgument(path + ": is a directory");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return IoError(path + ": cannot open for reading");
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return LoadText(buffer.str(), path);
+  Expected<std::string> text = ReadBoundedFile(path, kMaxSettingsFileBytes, "YAML file");
+  if (!text) return text.status();
+  return LoadText(*text, path);
 }
 
 std::string Where(const std::string& file, const YAML::Node& node) {

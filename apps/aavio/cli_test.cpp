@@ -182,8 +182,12 @@ TEST(Cli, OverlaysApplyOnTopOfThePreset) {
 
 TEST(Cli, ConfigErrorsAreClear) {
   Result r = RunAavio({"config", "--set", "mapping.etta=0.1"});
-  EXPECT_EQ(r.code, kExitError);
+  EXPECT_EQ(r.code, kExitUsage);
   EXPECT_NE(r.err.find("did you mean 'mapping.eta'"), std::string::npos) << r.err;
+  r = RunAavio({"config", "--set", "mapping.rate_hz=nan"});
+  EXPECT_EQ(r.code, kExitUsage);
+  EXPECT_NE(r.err.find("mapping.rate_hz: expected a finite number, got 'nan'"), std::string::npos)
+      << r.err;
   r = RunAavio({"config", "--set", "mapping.eta=-1"});
   EXPECT_EQ(r.code, kExitError);
   EXPECT_NE(r.err.find("invalid configuration: mapping.eta = -1 must be >= 0"), std::string::npos)
@@ -290,8 +294,9 @@ TEST(Cli, EvalComparesTrajectoryFiles) {
   // Two poses make no score (an alignment fits 3 positions); three do.
   const std::string two_poses = (dir / "two.txt").string(), three = (dir / "three.txt").string();
   testing::WriteFile(two_poses, "100.00 0 0 0 0 0 0 1\n100.01 0.02 0 0 0 0 0 1\n");
-  testing::WriteFile(three, "100.00 0 0 0 0 0 0 1\n100.01 0.02 0 0 0 0 0 1\n"
-                            "100.02 0.04 0.001 0 0 0 0 1\n");
+  testing::WriteFile(three,
+                     "100.00 0 0 0 0 0 0 1\n100.01 0.02 0 0 0 0 0 1\n"
+                     "100.02 0.04 0.001 0 0 0 0 1\n");
   r = RunAavio({"eval", "--est", two_poses, "--gt", g});
   EXPECT_EQ(r.code, kExitError);
   EXPECT_NE(r.err.find("only 2 estimated pose(s)"), std::string::npos) << r.err;

@@ -2,7 +2,9 @@
 
 #include <CLI/CLI.hpp>
 
+#include "aavio/common/config_fields.hpp"
 #include "aavio/io/presets.hpp"
+#include "aavio/pipeline/odometry_config.hpp"
 
 namespace aavio::cli {
 
@@ -18,8 +20,19 @@ void AddConfigOptions(CLI::App& sub, config::ConfigSources* sources) {
          "--config", sources->files,
          "YAML file(s) of parameters, or shipped overlays (" + overlays + "), applied in order")
       ->type_name("FILE");
+  // A key that does not exist or a value that cannot be one (NaN, text for a number) is a wrong
+  // argument, refused while parsing; ranges are checked once every source is applied.
   sub.add_option("--set", sources->overrides, "Override one parameter, e.g. --set mapping.eta=0.1")
-      ->type_name("KEY=VALUE");
+      ->type_name("KEY=VALUE")
+      ->check(CLI::Validator(
+          [](std::string& text) -> std::string {
+            Expected<ConfigEntry> entry = ParseKeyValueOverride(text);
+            if (!entry) return entry.status().message();
+            pipeline::OdometryConfig probe;
+            const Status applied = ApplyConfigEntries({*entry}, &probe);
+            return applied.ok() ? std::string() : applied.message();
+          },
+          "", ""));
 }
 
 }  // namespace aavio::cli

@@ -3,11 +3,11 @@
 // the definitions are those of rpg_trajectory_evaluation (docs/evaluation.md).
 #include <CLI/CLI.hpp>
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <ostream>
 
 #include "aavio/common/format.hpp"
+#include "aavio/io/file_checks.hpp"
 #include "aavio/io/trajectory_io.hpp"
 #include "aavio/mapping/rectified_stereo.hpp"
 #include "aavio/recording/run_evaluation.hpp"
@@ -44,14 +44,17 @@ Expected<RunGroundTruth> RunSequence(const EvalOptions& options) {
   std::string sequence = options.sequence;
   if (sequence.empty()) {
     const fs::path summary_path = fs::path(options.run) / recording::run_files::kSummary;
-    std::ifstream in(summary_path);
-    if (!in) {
+    std::error_code ec;
+    if (!fs::exists(summary_path, ec)) {
       return NotFound(summary_path.string() +
                       ": not found; --run takes a folder written by `aavio run`");
     }
+    Expected<std::string> text =
+        io::ReadBoundedFile(summary_path.string(), io::kMaxSettingsFileBytes, "run summary");
+    if (!text) return text.status();
     nlohmann::json summary;
     try {
-      in >> summary;
+      summary = nlohmann::json::parse(*text);
       sequence = summary.at("sequence").get<std::string>();
     } catch (const nlohmann::json::exception& e) {
       return ParseError(summary_path.string() + ": no readable \"sequence\" entry (" + e.what() +

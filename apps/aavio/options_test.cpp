@@ -87,8 +87,12 @@ TEST(Options, AbsurdValuesNameTheOptionAndItsRange) {
       << err.str();
   err.str("");
   EXPECT_EQ(RunCli({"aavio", "simulate", "--out", "x", "--fast", "1:0.5:50"}, out, err),
-            kExitError);
-  EXPECT_NE(err.str().find("disturbances.factor = 50 must be in [1, 20]"), std::string::npos)
+            kExitUsage);
+  EXPECT_NE(err.str().find("--fast 1:0.5:50: FACTOR must be in [1, 20]"), std::string::npos)
+      << err.str();
+  err.str("");
+  EXPECT_EQ(RunCli({"aavio", "simulate", "--out", "x", "--fast", "0.1:0"}, out, err), kExitUsage);
+  EXPECT_NE(err.str().find("--fast 0.1:0: SECONDS must be in [0.001, 86400]"), std::string::npos)
       << err.str();
 }
 

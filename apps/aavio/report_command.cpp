@@ -6,12 +6,12 @@
 #include <CLI/CLI.hpp>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <ostream>
 
 #include "aavio/common/format.hpp"
 #include "aavio/io/config_yaml.hpp"
+#include "aavio/io/file_checks.hpp"
 #include "aavio/io/trajectory_io.hpp"
 #include "aavio/recording/run_evaluation.hpp"
 #include "aavio/recording/run_recorder.hpp"
@@ -92,12 +92,15 @@ Expected<nlohmann::json> TrajectoryPlots(const std::string& estimate_path,
 // Everything the plots of one run need, as JSON.
 Expected<nlohmann::json> GatherRun(const std::string& dir, const std::string& name, Context& ctx) {
   const fs::path summary_path = fs::path(dir) / recording::run_files::kSummary;
-  std::ifstream in(summary_path);
-  if (!in)
+  std::error_code ec;
+  if (!fs::exists(summary_path, ec))
     return NotFound(summary_path.string() + ": not found; --run takes a folder of `aavio run`");
+  Expected<std::string> text =
+      io::ReadBoundedFile(summary_path.string(), io::kMaxSettingsFileBytes, "run summary");
+  if (!text) return text.status();
   nlohmann::json run;
   try {
-    in >> run["summary"];
+    run["summary"] = nlohmann::json::parse(*text);
   } catch (const nlohmann::json::exception& e) {
     return ParseError(summary_path.string() + ": not valid JSON (" + e.what() + ")");
   }

@@ -79,6 +79,13 @@ Expected<sim::Disturbance> ParseDisturbance(const DisturbanceOption& option,
   d.start_s = numbers[0];
   d.duration_s = numbers[1];
   if (numbers.size() == 3) d.factor = numbers[2];
+  // The ranges the simulation validates, said in the option's terms.
+  const std::string what = std::string(option.name) + " " + text + ": ";
+  if (d.start_s < 0.0) return InvalidArgument(what + "START must not be negative");
+  if (d.duration_s < 1e-3 || d.duration_s > 86400.0)
+    return InvalidArgument(what + "SECONDS must be in [0.001, 86400]");
+  if (fast && (d.factor < 1.0 || d.factor > 20.0))
+    return InvalidArgument(what + "FACTOR must be in [1, 20]");
   return d;
 }
 
@@ -175,11 +182,11 @@ void RegisterSimulate(CLI::App& app, Context& ctx) {
       ->delimiter(',');
   std::string world_effect_names;
   for (const sim::WorldEffect& e : sim::WorldEffects())
-    world_effect_names += (world_effect_names.empty() ? "" : "; ") + std::string(e.name) + ": " +
-                          e.description;
-  sub->add_option("--world-effects", request->world_effects,
-                  "What the world adds to a static, steady scene (comma-separated): " +
-                      world_effect_names)
+    world_effect_names +=
+        (world_effect_names.empty() ? "" : "; ") + std::string(e.name) + ": " + e.description;
+  sub->add_option(
+         "--world-effects", request->world_effects,
+         "What the world adds to a static, steady scene (comma-separated): " + world_effect_names)
       ->delimiter(',');
   auto disturbances = std::make_shared<std::vector<std::pair<DisturbanceOption, std::string>>>();
   for (const DisturbanceOption& option : kDisturbanceOptions) {
