@@ -3,6 +3,8 @@
 /// paper's / ICRA code's values; the provenance of each is given beside it.
 
 #include <array>
+#include <cstddef>
+#include <cstdint>
 #include <utility>
 
 #include "aavio/common/config_fields.hpp"
@@ -84,6 +86,18 @@ struct EdgeSamplingConfig {
       "no two AA samples within this many pixels while a block has others (aavio)");
   }
   Status Validate() const;
+};
+
+/// What the representation stage needs (RepresentationBuilder): its three sections, the seed of
+/// its random choices and its memory bound.
+struct RepresentationConfig {
+  TimeSurfaceConfig time_surface;
+  AdaptiveAccumulationConfig adaptive_accumulation;
+  EdgeSamplingConfig edge_sampling;
+  std::uint64_t seed = 1;
+  /// Per camera: events waiting for the next tick, and events kept for the AA window, beyond
+  /// this many are dropped, oldest first (a burst: a flash, a broken driver). Bounds memory.
+  std::size_t max_buffered_events = 5'000'000;
 };
 
 }  // namespace aavio::events

@@ -58,7 +58,21 @@ Status RepresentationBuilder::AddEvents(Camera camera, std::span<const Event> ev
     }
     state.newest_added_ns = e.t_ns;
   }
-  state.pending.insert(state.pending.end(), events.begin(), events.end());
+  // Beyond the cap the oldest go: of those waiting first, then of this call's.
+  const std::size_t cap = config_.max_buffered_events;
+  std::size_t from = 0;
+  if (events.size() >= cap) {
+    dropped_events_ += static_cast<std::int64_t>(state.pending.size() + events.size() - cap);
+    state.pending.clear();
+    from = events.size() - cap;
+  } else if (state.pending.size() + events.size() > cap) {
+    const std::size_t excess = state.pending.size() + events.size() - cap;
+    dropped_events_ += static_cast<std::int64_t>(excess);
+    state.pending.erase(state.pending.begin(),
+                        state.pending.begin() + static_cast<std::ptrdiff_t>(excess));
+  }
+  state.pending.insert(state.pending.end(), events.begin() + static_cast<std::ptrdiff_t>(from),
+                       events.end());
   return Status::Ok();
 }
 
@@ -86,8 +100,7 @@ Status RepresentationBuilder::Build(TimeNs t_ns, Observation* out, BuildOptions 
   auto start = Clock::now();
   AAVIO_RETURN_IF_ERROR(Consume(left_, t_ns, true, &out->new_events_left));
   AAVIO_RETURN_IF_ERROR(Consume(right_, t_ns, false, &out->new_events_right));
-  const double decay_ms =
-      options.decay_ms > 0.0 ? options.decay_ms : config_.time_surface.decay_ms;
+  const double decay_ms = options.decay_ms > 0.0 ? options.decay_ms : config_.time_surface.decay_ms;
   for (CameraState* camera : {&left_, &right_}) {
     if (camera == &right_ && !options.right_ts) {
       out->ts_right.release();
@@ -112,6 +125,9 @@ Status RepresentationBuilder::Build(TimeNs t_ns, Observation* out, BuildOptions 
   const TimeNs keep_from = t_ns - SecondsToNs(keep_ms * 1e-3);
   while (window_begin_ < window_.size() && window_[window_begin_].t_ns <= keep_from)
     ++window_begin_;
+  // The newest max_buffered_events at most (they are all in the time surface already).
+  window_begin_ = std::max(window_begin_,
+                           window_.size() - std::min(window_.size(), config_.max_buffered_events));
   if (window_begin_ > window_.size() / 2) {
     window_.erase(window_.begin(), window_.begin() + static_cast<std::ptrdiff_t>(window_begin_));
     window_begin_ = 0;

@@ -18,13 +18,6 @@
 
 namespace aavio::events {
 
-struct RepresentationConfig {
-  TimeSurfaceConfig time_surface;
-  AdaptiveAccumulationConfig adaptive_accumulation;
-  EdgeSamplingConfig edge_sampling;
-  std::uint64_t seed = 1;
-};
-
 enum class Camera { kLeft, kRight };
 
 /// What a tick draws beyond the left time surface and its derived images.
@@ -48,6 +41,13 @@ class RepresentationBuilder {
   /// them with `options` (the images are left empty; every event is still taken in).
   Status Build(TimeNs t_ns, Observation* out, BuildOptions options = {});
 
+  /// Events of both cameras dropped so far by max_buffered_events.
+  std::int64_t dropped_events() const { return dropped_events_; }
+  /// Events of a camera waiting for the next tick.
+  std::size_t buffered_events(Camera camera) const {
+    return (camera == Camera::kLeft ? left_ : right_).pending.size();
+  }
+
  private:
   struct CameraState {
     TimeSurface ts;
@@ -62,6 +62,7 @@ class RepresentationBuilder {
   geometry::StereoRectification rectification_;
   CameraState left_, right_;
   std::vector<Event> window_;  // recent left events, for AA and ESVO's selection
+  std::int64_t dropped_events_ = 0;
   std::size_t window_begin_ = 0;
   AdaptiveAccumulator accumulator_;
   AaMap aa_;

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <set>
 
+#include "aavio/common/format.hpp"
 #include "aavio/io/aedat4.hpp"
 #include "aavio/io/config_yaml.hpp"
 #include "aavio/io/dsec_h5_reader.hpp"
@@ -316,6 +317,61 @@ Expected<std::unique_ptr<ImuStream>> OpenImuStream(const SourceSpec& spec,
   return InvalidArgument(spec.path + ": IMU data are read from .txt, .bag or .aedat4 files");
 }
 
+namespace {
+
+bool SpanKnown(const StreamInfo& info) {
+  return info.count != 0 && !(info.t_first_ns == 0 && info.t_last_ns == 0);
+}
+
+std::string Span(const StreamInfo& info) {
+  return FormatSecondsNs(info.t_first_ns) + " - " + FormatSecondsNs(info.t_last_ns) + " s";
+}
+
+}  // namespace
+
+Status CheckStreamsOverlap(const SequenceDescription& d, const StreamInfo& left,
+                           const StreamInfo& right, const StreamInfo* imu) {
+  const std::string where = d.origin.empty() ? d.left.path : d.origin;
+  if (!SpanKnown(left) || !SpanKnown(right)) return Status::Ok();
+  if (left.t_first_ns > right.t_last_ns || right.t_first_ns > left.t_last_ns) {
+    return FailedPrecondition(where + ": the left camera's events span " + Span(left) +
+                              " and the right camera's " + Span(right) +
+                              ": they do not overlap; are both from this recording, and on one "
+                              "clock?");
+  }
+  if (imu != nullptr && SpanKnown(*imu)) {
+    const TimeNs first = std::min(left.t_first_ns, right.t_first_ns);
+    const TimeNs last = std::max(left.t_last_ns, right.t_last_ns);
+    if (imu->t_first_ns > last || imu->t_last_ns < first) {
+      return FailedPrecondition(where + ": the IMU samples span " + Span(*imu) +
+                                " and the events " + FormatSecondsNs(first) + " - " +
+                                FormatSecondsNs(last) +
+                                " s: they do not overlap; is the IMU on another clock (host "
+                                "time against sensor time)? Fix its stamps, or leave it out");
+    }
+  }
+  return Status::Ok();
+}
+
+std::string ImuStreamWarning(const SequenceDescription& d, std::int64_t samples, TimeNs first_ns,
+                             TimeNs last_ns, double tick_rate_hz) {
+  if (!d.imu) return "";
+  const std::string name = d.imu->path + (d.imu->topic.empty() ? "" : " " + d.imu->topic);
+  if (samples == 0) {
+    return name +
+           ": no IMU samples in the time processed; the run went on without an IMU "
+           "(check the topic, the file or its stamps)";
+  }
+  if (samples < 2 || last_ns <= first_ns) return "";
+  const double rate_hz = static_cast<double>(samples - 1) / NsToSeconds(last_ns - first_ns);
+  if (rate_hz >= tick_rate_hz) return "";
+  return name + StrFormat(
+                    ": %.1f IMU samples per second, fewer than one per tick (%.0f Hz): the "
+                    "rotation between ticks was interpolated from far-apart samples; an "
+                    "IMU of 200 Hz or more is expected (downsampled, or the wrong topic?)",
+                    rate_hz, tick_rate_hz);
+}
+
 Expected<std::unique_ptr<SequenceReader>> SequenceReader::Open(
     const SequenceDescription& d, const SequenceReaderOptions& options) {
   if (options.packet_ns <= 0) return InvalidArgument("packet length must be positive");
@@ -337,6 +393,8 @@ Expected<std::unique_ptr<SequenceReader>> SequenceReader::Open(
     if (!opened) return opened.status();
     imu = std::move(*opened);
   }
+  AAVIO_RETURN_IF_ERROR(
+      CheckStreamsOverlap(d, (*left)->info(), (*right)->info(), imu ? &imu->info() : nullptr));
   return std::make_unique<SequenceReader>(std::move(*left), std::move(*right), std::move(imu),
                                           options);
 }
@@ -374,7 +432,9 @@ Expected<bool> SequenceReader::Next(SensorPacket* packet) {
                               " s); it cannot be read in several passes");
   }
   const TimeNs shift_ns = pass_ * period_ns_;
-  const TimeNs end_ns = next_ns_ + options_.packet_ns;
+  // Through a stretch without data the packets grow, doubling while under 1 s: a gap of hours
+  // is read in thousands of packets, not millions, and a packet never holds 1 s of data or more.
+  const TimeNs end_ns = next_ns_ + options_.packet_ns * empty_growth_;
   AAVIO_RETURN_IF_ERROR(left_->ReadUntil(end_ns, &packet->left));
   AAVIO_RETURN_IF_ERROR(right_->ReadUntil(end_ns, &packet->right));
   if (imu_) AAVIO_RETURN_IF_ERROR(imu_->ReadUntil(end_ns, &packet->imu));
@@ -389,6 +449,12 @@ Expected<bool> SequenceReader::Next(SensorPacket* packet) {
       s.t_ns += shift_ns;
   }
   next_ns_ = end_ns;
+  const bool empty = packet->left.empty() && packet->right.empty() && packet->imu.empty();
+  if (!empty || options_.passes > 1) {
+    empty_growth_ = 1;
+  } else if (options_.packet_ns * empty_growth_ * 2 <= kNsPerS) {
+    empty_growth_ *= 2;
+  }
   return true;
 }
 
@@ -404,6 +470,7 @@ Status SequenceReader::Seek(TimeNs t_ns) {
   AAVIO_RETURN_IF_ERROR(right_->Seek(t_ns));
   if (imu_) AAVIO_RETURN_IF_ERROR(imu_->Seek(t_ns));
   next_ns_ = t_ns;
+  empty_growth_ = 1;
   return Status::Ok();
 }
 

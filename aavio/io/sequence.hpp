@@ -83,13 +83,26 @@ struct SensorPacket {
 };
 
 struct SequenceReaderOptions {
-  TimeNs packet_ns = kNsPerMs;  ///< length of each packet
-  StreamOptions stream;         ///< reorder window, sensor size, block size
+  TimeNs packet_ns =
+      kNsPerMs;  ///< length of each packet (after one without data, doubling while under 1 s)
+  StreamOptions stream;  ///< reorder window, sensor size, block size
   /// Read the sequence this many times back to back, each pass's clock shifted to follow the
   /// last (a long run from a short sequence: memory and speed over time). The camera jumps back
   /// to its start at each seam.
   int passes = 1;
 };
+
+/// Streams of one recording share a clock: the two cameras' time spans must overlap, and the
+/// IMU's must overlap the events'. A stream whose span is unknown without reading it is not
+/// checked.
+Status CheckStreamsOverlap(const SequenceDescription& d, const StreamInfo& left,
+                           const StreamInfo& right, const StreamInfo* imu);
+
+/// What makes the IMU stream a sequence names useless to the tracker, from the samples read
+/// (`samples` of them from `first_ns` to `last_ns`): none, or fewer than one per tick
+/// (`tick_rate_hz`). Empty when it is fine, or when the sequence has no IMU.
+std::string ImuStreamWarning(const SequenceDescription& d, std::int64_t samples, TimeNs first_ns,
+                             TimeNs last_ns, double tick_rate_hz);
 
 /// Merges the streams of a sequence into consecutive packets of data time.
 class SequenceReader {
@@ -117,8 +130,9 @@ class SequenceReader {
   SequenceReaderOptions options_;
   TimeNs start_ns_ = 0;
   TimeNs end_ns_ = 0;
-  TimeNs next_ns_ = 0;    // in the streams' own clock
-  TimeNs period_ns_ = 0;  // one pass, a whole number of packets
+  TimeNs next_ns_ = 0;       // in the streams' own clock
+  TimeNs empty_growth_ = 1;  // the next packet is this many packet_ns long (after empty ones)
+  TimeNs period_ns_ = 0;     // one pass, a whole number of packets
   int pass_ = 0;
 };
 

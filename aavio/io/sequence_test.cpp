@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 
 #include "tests/event_fixtures.hpp"
 #include "tests/fixtures/calibrations.hpp"
@@ -64,6 +65,70 @@ TEST(Sequence, ReadsASequenceYamlWithRelativePaths) {
   EXPECT_EQ(left, testing::ExpectedEvents("bag_lz4.left").size());
   EXPECT_EQ(right, testing::ExpectedEvents("bag_lz4.right").size());
   EXPECT_EQ(imu, testing::ExpectedImu("bag_lz4").size());
+}
+
+TEST(Sequence, StreamsThatDoNotOverlapAreRefusedWithBothSpans) {
+  SequenceDescription d;
+  d.origin = "seq/sequence.yaml";
+  const StreamInfo left{.count = 10, .t_first_ns = kNsPerS, .t_last_ns = 2 * kNsPerS};
+  StreamInfo right = left;
+  EXPECT_TRUE(CheckStreamsOverlap(d, left, right, nullptr).ok());
+  right.t_first_ns = 5 * kNsPerS;
+  right.t_last_ns = 6 * kNsPerS;
+  EXPECT_EQ(CheckStreamsOverlap(d, left, right, nullptr).message(),
+            "seq/sequence.yaml: the left camera's events span 1.000000000 - 2.000000000 s and the "
+            "right camera's 5.000000000 - 6.000000000 s: they do not overlap; are both from this "
+            "recording, and on one clock?");
+  // An IMU 1000 s late: host time against sensor time.
+  const StreamInfo imu{.count = 10, .t_first_ns = 1001 * kNsPerS, .t_last_ns = 1002 * kNsPerS};
+  const Status late = CheckStreamsOverlap(d, left, left, &imu);
+  EXPECT_NE(late.message().find("the IMU samples span 1001.000000000 - 1002.000000000 s and the "
+                                "events 1.000000000 - 2.000000000 s: they do not overlap"),
+            std::string::npos)
+      << late.message();
+  // A span not known without reading the whole stream is not checked.
+  EXPECT_TRUE(CheckStreamsOverlap(d, left, StreamInfo{}, &imu).ok());
+}
+
+TEST(Sequence, AnImuTheTrackerCannotUseIsSaid) {
+  SequenceDescription d;
+  EXPECT_EQ(ImuStreamWarning(d, 0, 0, 0, 100.0), "");  // no IMU named: nothing to say
+  d.imu = SourceSpec{SourceFormat::kText, "imu.txt", "", ImuTextLayout::kEcd};
+  EXPECT_EQ(ImuStreamWarning(d, 0, 0, 0, 100.0),
+            "imu.txt: no IMU samples in the time processed; the run went on without an IMU (check "
+            "the topic, the file or its stamps)");
+  EXPECT_NE(ImuStreamWarning(d, 11, 0, 10 * kNsPerS, 100.0)
+                .find("imu.txt: 1.0 IMU samples per second, fewer than one per tick (100 Hz)"),
+            std::string::npos);
+  EXPECT_EQ(ImuStreamWarning(d, 2001, 0, 10 * kNsPerS, 100.0), "");  // 200 Hz
+}
+
+TEST(Sequence, AGapOfHoursIsReadInFewPacketsOfBoundedLength) {
+  const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) / "gap_sequence";
+  std::filesystem::create_directories(dir);
+  for (const char* side : {"left", "right"}) {
+    std::ofstream out(dir / (std::string(side) + ".txt"));
+    for (int i = 0; i < 100; ++i)
+      out << 0.001 * i << " 1 1 1\n";
+    out << "10800.5 2 2 0\n";  // three hours later
+  }
+  SequenceDescription d;
+  d.left = {SourceFormat::kText, (dir / "left.txt").string(), "", {}};
+  d.right = {SourceFormat::kText, (dir / "right.txt").string(), "", {}};
+  Expected<std::unique_ptr<SequenceReader>> reader = SequenceReader::Open(d, {});
+  ASSERT_TRUE(reader.ok()) << reader.status().message();
+  SensorPacket packet;
+  std::size_t packets = 0, events = 0;
+  TimeNs previous_end = (*reader)->start_ns();
+  while (*(*reader)->Next(&packet)) {
+    ++packets;
+    events += packet.left.size();
+    EXPECT_EQ(packet.t_begin_ns, previous_end);
+    EXPECT_LE(packet.t_end_ns - packet.t_begin_ns, kNsPerS);
+    previous_end = packet.t_end_ns;
+  }
+  EXPECT_EQ(events, 101u);
+  EXPECT_LT(packets, 25000u);  // 10 800 s in packets of 0.512 s, not 10.8 million of 1 ms
 }
 
 TEST(Sequence, OneFileForBothCamerasIsRefused) {

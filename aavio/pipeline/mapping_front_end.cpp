@@ -4,15 +4,6 @@
 #include <cmath>
 
 namespace aavio::pipeline {
-namespace {
-
-events::RepresentationConfig RepresentationConfigOf(const OdometryConfig& c) {
-  return {c.time_surface, c.adaptive_accumulation, c.edge_sampling,
-          static_cast<std::uint64_t>(c.pipeline.random_seed)};
-}
-
-}  // namespace
-
 MappingFrontEnd::MappingFrontEnd(const geometry::StereoRig& rig, const OdometryConfig& config,
                                  const geometry::PoseBuffer& poses, TimeNs start_ns)
     : config_(config),
@@ -44,9 +35,9 @@ Status MappingFrontEnd::Tick(TimeNs t_ns) {
   auto obs = std::make_shared<events::Observation>();
   // Between cycles only the left time surface (nothing maps there), as in `Odometry`.
   const bool cycle_tick = (ticks_ + 1) % ticks_per_cycle_ == 0;
-  AAVIO_RETURN_IF_ERROR(builder_.Build(
-      t_ns, obs.get(),
-      {.right_ts = cycle_tick, .edges = cycle_tick, .decay_ms = decay_.decay_ms()}));
+  AAVIO_RETURN_IF_ERROR(
+      builder_.Build(t_ns, obs.get(),
+                     {.right_ts = cycle_tick, .edges = cycle_tick, .decay_ms = decay_.decay_ms()}));
   ++ticks_;
   if (on_tick) on_tick(t_ns, obs->timings);
   Expected<geometry::RigidTransform> pose = poses_.Query(t_ns);
@@ -55,8 +46,8 @@ Status MappingFrontEnd::Tick(TimeNs t_ns) {
   // τ follows the age of the events at the map's edges, as in `Odometry` (there after each
   // tracked tick; here the pose is the ground truth's).
   if (const mapping::LocalMapPtr map = mapper_.local_map(); map && !map->points_world.empty()) {
-    const double age_ms = tracking::MedianEdgeAgeMs(map->points_world, *pose, camera_,
-                                                    obs->ts_left, decay_.decay_ms());
+    const double age_ms = tracking::MedianEdgeAgeMs(map->points_world, *pose, camera_, obs->ts_left,
+                                                    decay_.decay_ms());
     if (age_ms >= 0.0) decay_.AddEdgeAge(age_ms);
   }
 

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <optional>
+#include <utility>
 
 namespace aavio::pipeline {
 namespace {
@@ -23,10 +24,7 @@ Odometry::Odometry(const geometry::StereoRig& rig, const OdometryConfig& config,
     : config_(config),
       rectification_(geometry::BuildStereoRectification(rig)),
       stereo_(mapping::RectifiedStereo::FromRig(rig)),
-      builder_(rectification_, rig.width(), rig.height(),
-               {config.time_surface, config.adaptive_accumulation, config.edge_sampling,
-                static_cast<std::uint64_t>(config.pipeline.random_seed)},
-               start_ns),
+      builder_(rectification_, rig.width(), rig.height(), RepresentationConfigOf(config), start_ns),
       tracker_(CameraOf(rig), config.tracking, config.imu,
                rig.T_imu_rect_left().value_or(geometry::RigidTransform()),
                static_cast<std::uint64_t>(config.pipeline.random_seed)),
@@ -42,7 +40,9 @@ Odometry::Odometry(const geometry::StereoRig& rig, const OdometryConfig& config,
       cycle_ns_(tick_ns_ * std::max(1, static_cast<int>(std::lround(config.time_surface.rate_hz /
                                                                     config.mapping.rate_hz)))),
       next_cycle_ns_(start_ns + cycle_ns_),
-      run_mapping_(run_mapping) {
+      run_mapping_(run_mapping),
+      last_event_ns_(start_ns),
+      T_world_held_(T_world_start) {
   tracker_.Reset(start_ns, T_world_start);
 }
 
@@ -67,6 +67,13 @@ Status Odometry::CollectCycle(OdometryTick* tick, bool wait) {
 
 Status Odometry::Process(std::span<const events::Event> left, std::span<const events::Event> right,
                          std::span<const imu::ImuSample> imu, TimeNs t_end_ns, TickPolicy policy) {
+  if (!left.empty() || !right.empty()) {
+    const TimeNs first = std::min(left.empty() ? right.front().t_ns : left.front().t_ns,
+                                  right.empty() ? left.front().t_ns : right.front().t_ns);
+    if (first - last_event_ns_ > kEventGapNs) AAVIO_RETURN_IF_ERROR(SkipEventGap(first));
+    last_event_ns_ = std::max({last_event_ns_, left.empty() ? first : left.back().t_ns,
+                               right.empty() ? first : right.back().t_ns});
+  }
   const auto start = std::chrono::steady_clock::now();
   AAVIO_RETURN_IF_ERROR(builder_.AddEvents(events::Camera::kLeft, left));
   AAVIO_RETURN_IF_ERROR(builder_.AddEvents(events::Camera::kRight, right));
@@ -75,7 +82,33 @@ Status Odometry::Process(std::span<const events::Event> left, std::span<const ev
   imu_.insert(imu_.end(), imu.begin(), imu.end());
   imu_seen_ = imu_seen_ || !imu.empty();
   last_t_end_ns_ = std::max(last_t_end_ns_, t_end_ns);
+  // In a gap no tick takes IMU samples: keep the last second's, enough for the tick grid to
+  // resume on, so that memory does not grow with the gap.
+  const TimeNs keep_from_ns = last_t_end_ns_ - kNsPerS;
+  if (keep_from_ns > last_event_ns_ + kEventGapNs) {
+    while (imu_.size() > 2 && imu_[1].t_ns < keep_from_ns)
+      imu_.pop_front();
+  }
   return RunTicks(policy, /*finishing=*/false);
+}
+
+Status Odometry::SkipEventGap(TimeNs resume_ns) {
+  // The ticks before the gap still waiting for IMU samples run with what there is.
+  AAVIO_RETURN_IF_ERROR(RunTicks(TickPolicy::kEvery, /*finishing=*/true));
+  pending_gap_ = EventGap{last_event_ns_, resume_ns};
+  // The first tick after the events return, on the same grid (a whole number of ticks on).
+  if (next_tick_ns_ <= resume_ns)
+    next_tick_ns_ += ((resume_ns - next_tick_ns_) / tick_ns_ + 1) * tick_ns_;
+  last_tick_ns_ = next_tick_ns_ - tick_ns_;
+  if (next_cycle_ns_ < next_tick_ns_)
+    next_cycle_ns_ += (next_tick_ns_ - next_cycle_ns_ + cycle_ns_ - 1) / cycle_ns_ * cycle_ns_;
+  // What the camera did meanwhile is unknown: mapping starts again at the held pose.
+  if (run_mapping_) {
+    Reinitialise(last_tick_ns_, T_world_held_, /*keep_velocity=*/false);
+  } else {
+    tracker_.Reset(last_tick_ns_, T_world_held_);
+  }
+  return Status::Ok();
 }
 
 Status Odometry::Finish() {
@@ -101,7 +134,9 @@ Status Odometry::RunTicks(TickPolicy policy, bool finishing) {
       next_tick_ns_ += skipped * tick_ns_;
     }
   }
-  while (next_tick_ns_ < last_t_end_ns_ && (finishing || ImuReady(next_tick_ns_))) {
+  const TimeNs gap_from_ns = last_event_ns_ + kEventGapNs;  // no tick in a gap
+  while (next_tick_ns_ < last_t_end_ns_ && next_tick_ns_ <= gap_from_ns &&
+         (finishing || ImuReady(next_tick_ns_))) {
     AAVIO_RETURN_IF_ERROR(Tick(next_tick_ns_, skipped));
     skipped = 0;
     last_tick_ns_ = next_tick_ns_;
@@ -176,6 +211,7 @@ Status Odometry::Tick(TimeNs t_ns, int skipped_ticks) {
   tick.skipped_ticks = skipped_ticks;
   tick.new_events_left = obs->new_events_left;
   tick.new_events_right = obs->new_events_right;
+  tick.dropped_events = builder_.dropped_events();
   tick.representation = obs->timings;
   if (before_tick) before_tick(*obs);
   if (config_.pipeline.real_time) {
@@ -195,6 +231,9 @@ Status Odometry::Tick(TimeNs t_ns, int skipped_ticks) {
   const tracking::TrackingResult tracked =
       tracker_.Track(*obs, rectification_.left.valid_mask, window);
   tick.T_world_cam = tracked.T_world_cur;
+  T_world_held_ = tracked.T_world_cur;
+  tick.gap_before = std::exchange(pending_gap_, std::nullopt);
+  tick.reinitialised = tick.gap_before && run_mapping_;
   tick.status = tracked.status;
   tick.lost_reason = tracked.lost_reason;
   // A tracked pose that the accelerometer contradicts is lost, and the map that misled it goes.

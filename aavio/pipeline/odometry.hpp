@@ -24,6 +24,7 @@
 #include <deque>
 #include <functional>
 #include <future>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -38,6 +39,14 @@
 #include "aavio/tracking/tracker.hpp"
 
 namespace aavio::pipeline {
+
+/// A stretch of data time in which neither camera gave a single event for at least
+/// Odometry::kEventGapNs: a gap in the recording (no real sensor is that silent; its noise alone
+/// gives thousands of events a second). Its ticks are not run.
+struct EventGap {
+  TimeNs from_ns = 0;  ///< the last event before it (the start, for a gap before the first)
+  TimeNs to_ns = 0;    ///< the first event after it
+};
 
 /// What one tick produced.
 struct OdometryTick {
@@ -55,11 +64,16 @@ struct OdometryTick {
   /// again on the next tick).
   std::string bootstrap_failure;
   bool reinitialised = false;  ///< tracking was lost too long: mapping was reset here
+  /// The first tick after an event gap: the gap, whose ticks were not run (mapping restarted).
+  std::optional<EventGap> gap_before;
   /// Ticks due before this one that were not run (TickPolicy::kLatest: a live input catching
   /// up); their events are in this tick's time surfaces.
   int skipped_ticks = 0;
   /// Events of each camera since the previous tick.
   std::int64_t new_events_left = 0, new_events_right = 0;
+  /// Events dropped so far, both cameras, because more than pipeline.max_buffered_events
+  /// waited for one tick (a running total).
+  std::int64_t dropped_events = 0;
   bool mapping_skipped = false;         ///< real-time mode: a cycle was due but the last still ran
   double mapping_wait_ms = 0.0;         ///< concurrent mapping: waited this long for the last cycle
   mapping::MappingCycleReport mapping;  ///< of the cycle, if one ran (not for bootstraps)
@@ -102,14 +116,22 @@ class Odometry {
     tracker_.SetMap(std::move(map));
   }
   std::int64_t ticks() const { return ticks_; }
+  /// Ticks run through this much data time without an event (darkness, a standstill with an
+  /// ideal sensor: the pose holds); beyond it they stop, and when events return mapping restarts
+  /// at the held pose on the same tick grid.
+  static constexpr TimeNs kEventGapNs = 5 * kNsPerS;
+
   /// Wall time the last Process call spent adding events to the representations.
   double last_insertion_ms() const { return last_insertion_ms_; }
   ~Odometry();
 
  private:
   Status Tick(TimeNs t_ns, int skipped_ticks);
-  // Runs the ticks due (all, or with kLatest the last).
+  // Runs the ticks due (all, or with kLatest the last), none past the event gap's start.
   Status RunTicks(TickPolicy policy, bool finishing);
+  // Events return at resume_ns after a gap: the ticks before it run, the tick grid moves on to
+  // resume_ns, mapping restarts at the held pose.
+  Status SkipEventGap(TimeNs resume_ns);
   // The IMU samples the tick at t_ns needs are in: up to the first at or after t + offset.
   bool ImuReady(TimeNs t_ns) const;
   // The IMU samples of the tick at t_ns, in camera time.
@@ -137,12 +159,12 @@ class Odometry {
   tracking::Camera camera_;
   tracking::AdaptiveDecay decay_;
   mapping::Mapper mapper_;
-  std::deque<imu::ImuSample> imu_;  // IMU clock
-  TimeNs imu_offset_ns_;            // t_imu − t_cam
-  TimeNs last_t_end_ns_;            // all data is in up to here
-  bool imu_seen_ = false;           // any IMU sample in the input so far
+  std::deque<imu::ImuSample> imu_;       // IMU clock
+  TimeNs imu_offset_ns_;                 // t_imu − t_cam
+  TimeNs last_t_end_ns_;                 // all data is in up to here
+  bool imu_seen_ = false;                // any IMU sample in the input so far
   imu::MotionEvidence motion_evidence_;  // for the first map: is the camera moving?
-  imu::InertialCheck inertial_check_;     // does the tracked motion agree with the accelerometer?
+  imu::InertialCheck inertial_check_;    // does the tracked motion agree with the accelerometer?
   TimeNs tick_ns_, next_tick_ns_;
   TimeNs last_tick_ns_;   // the last tick run (the start before the first)
   TimeNs cycle_ns_;       // mapping period: a whole number of ticks
@@ -152,6 +174,9 @@ class Odometry {
   TimeNs pending_cycle_t_ns_ = 0;  // the tick the pending cycle was started on
   std::int64_t ticks_ = 0;
   int lost_ticks_ = 0;
+  TimeNs last_event_ns_;                   // the newest event of either camera (the start before)
+  std::optional<EventGap> pending_gap_;    // for the next tick's gap_before
+  geometry::RigidTransform T_world_held_;  // the last tick's pose: where a gap's ticks resume
   double last_insertion_ms_ = 0.0;
 };
 

@@ -34,4 +34,10 @@ Status OdometryConfig::Validate() const {
   return check.status();
 }
 
+events::RepresentationConfig RepresentationConfigOf(const OdometryConfig& config) {
+  return {config.time_surface, config.adaptive_accumulation, config.edge_sampling,
+          static_cast<std::uint64_t>(config.pipeline.random_seed),
+          static_cast<std::size_t>(config.pipeline.max_buffered_events)};
+}
+
 }  // namespace aavio::pipeline

@@ -16,7 +16,9 @@ struct PipelineConfig {
   std::int64_t random_seed = 1;  ///< seeds every random choice; same seed, same trajectory
   int num_threads = 0;           ///< workers of the parallel stages (TBB, OpenCV), 0 = all cores;
                                  ///< results do not depend on it
-  int max_buffered_events = 5'000'000;  ///< per camera, oldest dropped beyond ([ESVO] 5e6)
+  /// Per camera: events waiting for one tick beyond this are dropped, oldest first (counted in
+  /// summary.json dropped_events); bounds memory in a burst ([ESVO] 5e6)
+  int max_buffered_events = 5'000'000;
   /// Consecutive lost ticks after which mapping re-initialises (SGM) at the held pose (aavio)
   int max_lost_ticks = 5;
   /// Real-time mode (aavio): mapping cycles run on their own thread while tracking goes on; a
@@ -69,5 +71,8 @@ struct OdometryConfig {
   /// Every section, then the relations between sections.
   Status Validate() const;
 };
+
+/// The representation stage's part of the configuration.
+events::RepresentationConfig RepresentationConfigOf(const OdometryConfig& config);
 
 }  // namespace aavio::pipeline

@@ -6,6 +6,7 @@
 #include <tbb/global_control.h>
 
 #include <cmath>
+#include <fstream>
 #include <functional>
 #include <optional>
 #include <random>
@@ -242,6 +243,88 @@ TEST(Odometry, ShiftingEveryStampChangesNoPose) {
       ASSERT_EQ(moved[i].T_world_cam.t, base[i].T_world_cam.t) << i;
     }
   }
+}
+
+TEST(Odometry, AnHourWithoutEventsIsSkippedNotTickedThrough) {
+  // The recording stops at 0.8 s and goes on an hour later (events and IMU alike).
+  const aavio::testing::SimulatedSequence& r = Mini();
+  ASSERT_TRUE(r.rig && !r.packets.empty());
+  const TimeNs cut_ns = r.start_ns + SecondsToNs(0.8);
+  const TimeNs hour_ns = 3600 * kNsPerS;
+  Odometry odometry(*r.rig, RpgPreset(), r.start_ns);
+  std::vector<OdometryTick> ticks;
+  odometry.on_tick = [&](const OdometryTick& t) { ticks.push_back(t); };
+  TimeNs last_before = 0, first_after = 0;
+  for (io::SensorPacket p : r.packets) {
+    const TimeNs shift = p.t_begin_ns >= cut_ns ? hour_ns : 0;
+    for (auto* events : {&p.left, &p.right})
+      for (events::Event& e : *events) {
+        e.t_ns += shift;
+        if (shift == 0) last_before = std::max(last_before, e.t_ns);
+        if (shift != 0 && first_after == 0) first_after = e.t_ns;
+      }
+    for (imu::ImuSample& sample : p.imu)
+      sample.t_ns += shift;
+    ASSERT_TRUE(odometry.Process(p.left, p.right, p.imu, p.t_end_ns + shift).ok());
+  }
+  ASSERT_TRUE(odometry.Finish().ok());
+  // The ticks of the silent 5 s after the cut run (the pose holds), none of the hour's.
+  std::size_t resumed = 0;
+  for (std::size_t i = 0; i < ticks.size(); ++i) {
+    ASSERT_TRUE(Finite(ticks[i].T_world_cam)) << i;
+    ASSERT_TRUE(ticks[i].t_ns <= last_before + Odometry::kEventGapNs || ticks[i].t_ns > first_after)
+        << NsToSeconds(ticks[i].t_ns - r.start_ns);
+    if (ticks[i].gap_before) {
+      ASSERT_EQ(resumed, 0u);
+      resumed = i;
+    }
+  }
+  ASSERT_GT(resumed, 0u);
+  EXPECT_EQ(ticks[resumed].gap_before->from_ns, last_before);
+  EXPECT_EQ(ticks[resumed].gap_before->to_ns, first_after);
+  EXPECT_TRUE(ticks[resumed].reinitialised);
+  EXPECT_LT(ticks.size(), 80u + 500u + 80u);  // 0.8 s + 5 s + what follows, at 100 Hz
+  // On the same tick grid, and mapping starts again after the gap.
+  EXPECT_EQ((ticks[resumed].t_ns - r.start_ns) % SecondsToNs(0.01), 0);
+  bool bootstrapped = false;
+  for (std::size_t i = resumed; i < ticks.size(); ++i)
+    bootstrapped = bootstrapped || ticks[i].bootstrap;
+  EXPECT_TRUE(bootstrapped);
+}
+
+// The process's peak resident memory so far, in MB.
+double PeakResidentMb() {
+  std::ifstream status("/proc/self/status");
+  for (std::string line; std::getline(status, line);)
+    if (line.rfind("VmHWM:", 0) == 0) return std::stod(line.substr(6)) / 1024.0;
+  return 0.0;
+}
+
+TEST(Odometry, TenMillionEventsAtOneInstantAreCappedByMaxBufferedEvents) {
+  const aavio::testing::SimulatedSequence& r = Mini();
+  ASSERT_TRUE(r.rig);
+  OdometryConfig config = RpgPreset();
+  config.pipeline.max_buffered_events = 1000;
+  Odometry odometry(*r.rig, config, r.start_ns);
+  std::vector<OdometryTick> ticks;
+  odometry.on_tick = [&](const OdometryTick& t) { ticks.push_back(t); };
+  // 10 million events per camera at one instant, handed over 100 000 at a time (as a driver
+  // would): unbounded, they would hold 2 × 160 MB until the tick.
+  const double peak_before_mb = PeakResidentMb();
+  const TimeNs burst_ns = r.start_ns + SecondsToNs(0.005);
+  std::vector<events::Event> chunk(100'000);
+  for (std::size_t i = 0; i < chunk.size(); ++i)
+    chunk[i] = {burst_ns, static_cast<std::uint16_t>(i % r.rig->width()),
+                static_cast<std::uint16_t>(i % r.rig->height()), static_cast<std::uint8_t>(i % 2)};
+  for (int c = 0; c < 100; ++c)
+    ASSERT_TRUE(odometry.Process(chunk, chunk, {}, burst_ns + 1).ok());
+  const Status ticked = odometry.Process({}, {}, {}, r.start_ns + SecondsToNs(0.05));
+  ASSERT_TRUE(ticked.ok()) << ticked.message();
+  ASSERT_TRUE(odometry.Finish().ok());
+  ASSERT_FALSE(ticks.empty());
+  EXPECT_EQ(ticks.back().dropped_events, 2 * (10'000'000 - 1000));
+  EXPECT_EQ(ticks.front().new_events_left, 1000);
+  EXPECT_LT(PeakResidentMb() - peak_before_mb, 64.0);
 }
 
 TEST(Odometry, ATrackTheAccelerometerContradictsIsLostAndMappingRestarts) {

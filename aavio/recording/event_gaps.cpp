@@ -36,6 +36,9 @@ nlohmann::json EventGaps::Json() const {
     for (const auto& [from, to] : gaps_[camera])
       j[camera == 0 ? "left" : "right"].push_back({from, to});
   }
+  j["skipped"] = nlohmann::json::array();
+  for (const auto& [from, to] : skipped_)
+    j["skipped"].push_back({from, to});
   return j;
 }
 

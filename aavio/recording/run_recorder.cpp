@@ -168,7 +168,9 @@ Status RunRecorder::AddTick(const pipeline::OdometryTick& t) {
   AddRepresentation(t.t_ns, t.representation);
   trajectory_.push_back({t.t_ns, t.T_world_cam});
   trajectory_file_ << io::FormatTumPose(trajectory_.back());
+  if (t.gap_before) event_gaps_.AddSkipped(t.gap_before->from_ns, t.gap_before->to_ns);
   event_gaps_.Add(t.t_ns, t.new_events_left, t.new_events_right);
+  dropped_events_ = t.dropped_events;
   status_counts_[tracking::TrackingStatusName(t.status)]++;
   if (t.status == tracking::TrackingStatus::kLost)
     lost_reasons_[tracking::LostReasonName(t.lost_reason)]++;
@@ -330,6 +332,7 @@ Expected<RunRecord> RunRecorder::Finish(bool interrupted, TimeNs end_ns,
   s["evaluation_s"] = evaluation_s;
   s["real_time_factor"] = processing_s > 0.0 ? record.data_s / processing_s : 0.0;
   s["events"] = events_;
+  s["dropped_events"] = dropped_events_;
   s["poses"] = trajectory_.size();
   s["status"] = status_counts_;
   s["lost_reasons"] = lost_reasons_;

@@ -42,9 +42,7 @@ Status Run(RepresentationsOptions options, Context& ctx) {
   const TimeNs from = std::max(start, at - SecondsToNs(options.history_s));
   AAVIO_RETURN_IF_ERROR(reader->Seek(from));
 
-  events::RepresentationConfig rc{config->time_surface, config->adaptive_accumulation,
-                                  config->edge_sampling,
-                                  static_cast<std::uint64_t>(config->pipeline.random_seed)};
+  const events::RepresentationConfig rc = pipeline::RepresentationConfigOf(*config);
   const geometry::StereoRectification rectification = geometry::BuildStereoRectification(rig);
   events::RepresentationBuilder builder(rectification, rig.width(), rig.height(), rc, from);
   std::vector<events::Event> recent_left;  // for ESVO's selection

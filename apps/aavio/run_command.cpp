@@ -122,6 +122,19 @@ void PrintOdometryRun(const recording::RunRecord& r, Context& ctx) {
       line += StrFormat(" %.2f-%.2f s", gap[0].get<double>(), gap[1].get<double>());
     ctx.out << line << "\n";
   }
+  if (const auto dropped = s["dropped_events"].get<long long>(); dropped > 0) {
+    ctx.out << StrFormat(
+        "dropped %lld events: more than pipeline.max_buffered_events per camera waited for one "
+        "tick (a burst)\n",
+        dropped);
+  }
+  if (!s["event_gaps"]["skipped"].empty()) {
+    std::string line =
+        "no events from either camera (not ticked through; mapping restarted after):";
+    for (const nlohmann::json& gap : s["event_gaps"]["skipped"])
+      line += StrFormat(" %.2f-%.2f s", gap[0].get<double>(), gap[1].get<double>());
+    ctx.out << line << "\n";
+  }
   if (!s["imu_only"].empty()) {
     std::string line = "carried on the IMU alone (events missing or not registering):";
     for (const nlohmann::json& stretch : s["imu_only"])
@@ -186,6 +199,8 @@ struct Fed {
   TimeNs last_t = 0;  ///< the data time processed up to
   bool interrupted = false;
   Status stopped_by = Status::Ok();  ///< an error that ended the run early (input or output)
+  std::int64_t imu_samples = 0;      ///< IMU samples read, and the first and last stamp
+  TimeNs imu_first_ns = 0, imu_last_ns = 0;
 };
 
 // Feeds the packets of [begin, end) to `process` (decoded on a thread of their own, up to 50
@@ -219,6 +234,11 @@ Fed FeedPackets(io::SequenceReader* reader, TimeNs begin, TimeNs end,
         packet.left.size() + packet.right.size(),
         std::chrono::duration<double, std::milli>(Clock::now() - read_start).count());
     const TimeNs t_end = std::min(packet.t_end_ns, end);
+    if (!packet.imu.empty()) {
+      if (fed.imu_samples == 0) fed.imu_first_ns = packet.imu.front().t_ns;
+      fed.imu_samples += static_cast<std::int64_t>(packet.imu.size());
+      fed.imu_last_ns = packet.imu.back().t_ns;
+    }
     status = process(packet, t_end);
     if (!status.ok()) break;
     fed.last_t = t_end;
@@ -259,6 +279,7 @@ Expected<bool> Run(RunOptions options, Context& ctx) {
   if (!config) return config.status();
   const geometry::StereoRig& rig = opened->calibration.rig;
   io::SequenceReader* reader = opened->reader.get();
+
   const TimeNs begin = reader->start_ns() + SecondsToNs(options.start_s);
   const TimeNs end =
       options.duration_s > 0.0 ? begin + SecondsToNs(options.duration_s) : reader->end_ns();
@@ -362,6 +383,16 @@ Expected<bool> Run(RunOptions options, Context& ctx) {
   // Stopped by an error (a full disk, a corrupt stretch of the input): what was done until then
   // is written all the same, and the error is the command's result.
   nlohmann::json extra = nlohmann::json::object();
+  // Legal input the run could not use well: kept in summary.json, and said at the end.
+  std::vector<std::string> warnings = opened->calibration.warnings;
+  const std::string imu_warning =
+      io::ImuStreamWarning(opened->description, fed.imu_samples, fed.imu_first_ns, fed.imu_last_ns,
+                           config->time_surface.rate_hz);
+  if (!imu_warning.empty()) {
+    warnings.push_back(imu_warning);
+    if (!options.quiet) ctx.err << "warning: " << imu_warning << "\n";
+  }
+  extra["warnings"] = warnings;
   if (!fed.stopped_by.ok()) extra["stopped_by"] = fed.stopped_by.message();
   if (options.repeat > 1) extra["repeat"] = options.repeat;
   std::optional<RelativeError100Ms> tracking_error;
@@ -391,11 +422,11 @@ Expected<bool> Run(RunOptions options, Context& ctx) {
                       " holds the run's outputs; its summary.json says why it has no accuracy");
   }
   if (recorder.trajectory().empty() && !fed.interrupted && !options.gt_poses) {
-    return FailedPrecondition(StrFormat(
-        "no pose was estimated: the %.3f s of data read hold no tick (one every %.1f ms, "
-        "time_surface.rate_hz): check --start and --duration against the sequence's span "
-        "(`aavio info %s`)",
-        record->data_s, 1e3 / config->time_surface.rate_hz, options.sequence.c_str()));
+    return FailedPrecondition(
+        StrFormat("no pose was estimated: the %.3f s of data read hold no tick (one every %.1f ms, "
+                  "time_surface.rate_hz): check --start and --duration against the sequence's span "
+                  "(`aavio info %s`)",
+                  record->data_s, 1e3 / config->time_surface.rate_hz, options.sequence.c_str()));
   }
   PrintRun(*record, options, tracking_error, EnumName(config->imu.mode), ctx);
   return fed.interrupted;
