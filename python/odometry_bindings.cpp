@@ -25,7 +25,19 @@ std::vector<std::string> OverridesOf(const py::object& set) {
     }
     return overrides;
   }
-  return set.cast<std::vector<std::string>>();
+  const auto wrong = [&](const std::string& what) {
+    throw py::type_error(
+        "set= takes a dict {'mapping.rate_hz': 10} or a list of 'key=value' "
+        "strings, got " +
+        what);
+  };
+  if (!py::isinstance<py::list>(set) && !py::isinstance<py::tuple>(set))
+    wrong(py::str(py::type::of(set).attr("__name__")).cast<std::string>());
+  for (const py::handle item : set) {
+    if (!py::isinstance<py::str>(item)) wrong("an item " + py::repr(item).cast<std::string>());
+    overrides.push_back(item.cast<std::string>());
+  }
+  return overrides;
 }
 
 class PyOdometry {

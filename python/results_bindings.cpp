@@ -18,6 +18,11 @@ namespace aavio::python {
 
 Trajectory TrajectoryOf(const py::object& trajectory_or_path) {
   if (py::isinstance<Trajectory>(trajectory_or_path)) return trajectory_or_path.cast<Trajectory>();
+  if (!py::isinstance<py::str>(trajectory_or_path) &&
+      !py::isinstance(trajectory_or_path, py::module_::import("os").attr("PathLike"))) {
+    throw py::type_error("expected a Trajectory or the path of a TUM trajectory file, got " +
+                         py::repr(trajectory_or_path).cast<std::string>());
+  }
   const std::string path = py::str(trajectory_or_path);
   return {Unwrap(io::ReadTumTrajectory(path)), {}};
 }

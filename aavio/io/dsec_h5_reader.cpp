@@ -27,7 +27,7 @@ struct DsecH5EventStream::State {
   std::uint64_t count = 0;
   std::uint64_t next_index = 0;  // next event to read from the file
   ReorderBuffer<events::Event> reorder{0};
-  std::vector<std::uint16_t> xs, ys;
+  std::vector<std::int32_t> xs, ys;  // wider than the file's uint16: a signed file's -1 shows
   std::vector<std::int16_t> ps;
   std::vector<std::int64_t> ts;
   std::vector<events::Event> block;  // the block's events before the reorder buffer
@@ -59,14 +59,15 @@ Status ReadSlab(hid_t dataset, hid_t mem_type, std::uint64_t begin, std::uint64_
 }  // namespace
 
 Status DsecH5EventStream::State::ReadRange(std::uint64_t begin, std::uint64_t n) {
+  h5::SilenceErrorPrinting();  // HDF5's printing is per thread: this may be a reader's thread
   xs.resize(n);
   ys.resize(n);
   ps.resize(n);
   ts.resize(n);
   AAVIO_RETURN_IF_ERROR(
-      ReadSlab(datasets[0].get(), H5T_NATIVE_UINT16, begin, n, xs.data(), path, kFields[0]));
+      ReadSlab(datasets[0].get(), H5T_NATIVE_INT32, begin, n, xs.data(), path, kFields[0]));
   AAVIO_RETURN_IF_ERROR(
-      ReadSlab(datasets[1].get(), H5T_NATIVE_UINT16, begin, n, ys.data(), path, kFields[1]));
+      ReadSlab(datasets[1].get(), H5T_NATIVE_INT32, begin, n, ys.data(), path, kFields[1]));
   AAVIO_RETURN_IF_ERROR(
       ReadSlab(datasets[2].get(), H5T_NATIVE_INT16, begin, n, ps.data(), path, kFields[2]));
   AAVIO_RETURN_IF_ERROR(
@@ -77,6 +78,17 @@ Status DsecH5EventStream::State::ReadRange(std::uint64_t begin, std::uint64_t n)
 Status DsecH5EventStream::State::ReadBlock() {
   const std::uint64_t n = std::min<std::uint64_t>(options.block_events, count - next_index);
   AAVIO_RETURN_IF_ERROR(ReadRange(next_index, n));
+  // HDF5 would clamp a negative x to 0 when reading it as uint16; a polarity other than 0/1
+  // (or -1/1) is a wrong column or a corrupt file.
+  for (std::uint64_t i = 0; i < n; ++i) {
+    if (xs[i] < 0 || ys[i] < 0 || xs[i] > 65535 || ys[i] > 65535 || ps[i] < -1 || ps[i] > 1) {
+      return InvalidArgument(path + ": event " + std::to_string(next_index + i) +
+                             " has x = " + std::to_string(xs[i]) +
+                             ", y = " + std::to_string(ys[i]) + ", p = " + std::to_string(ps[i]) +
+                             ": x and y must be pixel columns and rows (0 to 65535), p 0 or 1; a "
+                             "corrupt file, or a converter that wrote the wrong column?");
+    }
+  }
   const int width = options.width;
   const int height = options.height;
   if (width > 0) {
@@ -97,7 +109,8 @@ Status DsecH5EventStream::State::ReadBlock() {
                         std::to_string(ts[i]) + " µs (+ t_offset " + std::to_string(t_offset_us) +
                         ") is beyond what nanoseconds hold (292 years): a corrupt file");
     }
-    block[i] = {t_ns, xs[i], ys[i], static_cast<std::uint8_t>(ps[i] > 0 ? 1 : 0)};
+    block[i] = {t_ns, static_cast<std::uint16_t>(xs[i]), static_cast<std::uint16_t>(ys[i]),
+                static_cast<std::uint8_t>(ps[i] > 0 ? 1 : 0)};
   }
   // In-order runs in one copy; an element out of order goes through Push (reordered or an error).
   const std::span<const events::Event> all(block);
@@ -115,6 +128,7 @@ Status DsecH5EventStream::State::ReadBlock() {
 }
 
 Expected<std::int64_t> DsecH5EventStream::State::ReadT(std::uint64_t index) {
+  h5::SilenceErrorPrinting();
   std::int64_t t = 0;
   AAVIO_RETURN_IF_ERROR(
       ReadSlab(datasets[3].get(), H5T_NATIVE_INT64, index, 1, &t, path, kFields[3]));

@@ -122,6 +122,8 @@ TEST(DsecH5, BadFilesGiveClearErrors) {
   const std::vector<Case> read_errors = {
       {"backwards", "event 150000: timestamp 36470.280811000 s goes back 30.000 ms"},
       {"outside", "event 5000 at (700,"},
+      {"negative_x", "event 7000 has x = -3, y = "},
+      {"polarity_7", "event 9000 has x = "},
       {"corrupt", "the file is truncated or corrupt (HDF5: Blosc decompression error"},
   };
   for (const Case& c : read_errors) {

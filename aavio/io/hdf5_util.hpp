@@ -45,7 +45,8 @@ class Handle {
   Closer closer_ = nullptr;
 };
 
-/// Silences HDF5's default printing of its error stack (aavio reports errors itself). Idempotent.
+/// Silences HDF5's default printing of its error stack (aavio reports errors itself), on the
+/// calling thread (HDF5 keeps the setting per thread). Idempotent and cheap.
 void SilenceErrorPrinting();
 
 /// The most specific message on HDF5's current error stack ("" if empty), then clears it.

@@ -140,8 +140,13 @@ Status ParseEventLine(std::string_view line, const std::string& where, const Str
   int x = 0, y = 0, p = 0;
   if (!ParseNumber(f[1], &x) || !ParseNumber(f[2], &y) || !ParseNumber(f[3], &p) || x < 0 ||
       y < 0 || x > 65535 || y > 65535) {
-    return ParseError(where + ": x, y and p must be non-negative integers, got '" +
-                      std::string(line.substr(0, 80)) + "'");
+    return ParseError(where + ": x and y must be integers from 0 to 65535 and p an integer, got '" +
+                      PrintableExcerpt(line) + "'");
+  }
+  // 0/1 as the Event Camera Dataset writes it, or -1/1 as some converters do.
+  if (p < -1 || p > 1) {
+    return ParseError(where + ": polarity p = " + std::to_string(p) +
+                      " is none of 0 or -1 (OFF) and 1 (ON); is the column order 't x y p'?");
   }
   if (options.width > 0 && (x >= options.width || y >= options.height)) {
     return InvalidArgument(where + ": event at (" + std::to_string(x) + ", " + std::to_string(y) +

@@ -75,7 +75,8 @@ TEST(TextStreams, MalformedLinesNameFileAndLine) {
   const std::vector<Case> cases = {
       {"1.0 1 2 1\n1.1 1 2\n", "events.txt:2: expected 4 columns"},
       {"1.0 1 2 1\nx 1 2 1\n", "events.txt:2: 'x' is not a time"},
-      {"1.0 1 -2 1\n", "events.txt:1: x, y and p must be non-negative integers"},
+      {"1.0 1 -2 1\n", "events.txt:1: x and y must be integers from 0 to 65535"},
+      {"1.0 1 2 7\n", "events.txt:1: polarity p = 7 is none of 0 or -1 (OFF) and 1 (ON)"},
       {"1.0 300 2 1\n", "events.txt:1: event at (300, 2) is outside the 240x180 sensor"},
       {"1.0 1 2 1\n0.5 1 2 1\n", "events.txt:2: timestamp 0.500000000 s goes back 500.000 ms"},
   };

@@ -16,10 +16,11 @@ inline CLI::Validator NumberIn(double lo, double hi) {
   return CLI::Validator(
       [lo, hi](std::string& text) -> std::string {
         double value = 0.0;
-        if (!CLI::detail::lexical_cast(text, value) || !std::isfinite(value) || value < lo ||
-            value > hi) {
-          return StrFormat("Value %s not in range [%g, %g]", text.c_str(), lo, hi);
+        if (!CLI::detail::lexical_cast(text, value) || !std::isfinite(value)) {
+          return StrFormat("'%s' is not a number; give one in [%g, %g]", text.c_str(), lo, hi);
         }
+        if (value < lo || value > hi)
+          return StrFormat("Value %s not in range [%g, %g]", text.c_str(), lo, hi);
         return std::string();
       },
       StrFormat("NUMBER in [%g - %g]", lo, hi));

@@ -67,7 +67,13 @@ TEST(Options, AbsurdValuesNameTheOptionAndItsRange) {
   err.str("");
   EXPECT_EQ(RunCli({"aavio", "run", "seq", "--out", "x", "--duration", "nan"}, out, err),
             kExitUsage);
-  EXPECT_NE(err.str().find("--duration: Value nan not in range [0, 1e+06]"), std::string::npos)
+  EXPECT_NE(err.str().find("--duration: 'nan' is not a number; give one in [0, 1e+06]"),
+            std::string::npos)
+      << err.str();
+  err.str("");
+  EXPECT_EQ(RunCli({"aavio", "run", "seq", "--out", "x", "--start", "abc"}, out, err), kExitUsage);
+  EXPECT_NE(err.str().find("--start: 'abc' is not a number; give one in [0, 1e+06]"),
+            std::string::npos)
       << err.str();
   err.str("");
   EXPECT_EQ(RunCli({"aavio", "eval", "--est", "a", "--gt", "b", "--fractions", "0.5,2"}, out, err),

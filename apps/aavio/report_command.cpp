@@ -138,12 +138,12 @@ Status Report(const ReportOptions& options, Context& ctx) {
         StrFormat("--name given %zu times for %zu --run folders; give one per run or none",
                   options.names.size(), options.runs.size()));
   }
-  const fs::path out_html =
-      options.out.empty() ? fs::path(options.runs.front()) / "report.html" : fs::path(options.out);
-  const fs::path data_dir = out_html.parent_path().empty()
-                                ? fs::path("report_files")
-                                : out_html.parent_path() / (out_html.stem().string() + "_files");
+  // --out names the html file, or a folder to put report.html in.
   std::error_code ec;
+  fs::path out_html =
+      options.out.empty() ? fs::path(options.runs.front()) / "report.html" : fs::path(options.out);
+  if (fs::is_directory(out_html, ec)) out_html /= "report.html";
+  const fs::path data_dir = out_html.parent_path() / (out_html.stem().string() + "_files");
   fs::create_directories(data_dir, ec);
   if (ec) return IoError(data_dir.string() + ": cannot create the folder (" + ec.message() + ")");
   for (const auto& entry : fs::directory_iterator(data_dir, ec))
@@ -200,7 +200,8 @@ void RegisterReport(CLI::App& app, Context& ctx) {
   sub->add_option("--run", options->runs, "A run folder of `aavio run` (repeat to compare runs)")
       ->required();
   sub->add_option("--name", options->names, "A label per run (default: the folder name)");
-  sub->add_option("--out", options->out, "The html file (default: FIRST_RUN/report.html)");
+  sub->add_option("--out", options->out,
+                  "The html file, or a folder for report.html (default: FIRST_RUN/report.html)");
   sub->callback([&ctx, options] {
     ctx.action = [&ctx, options] {
       const Status status = Report(*options, ctx);

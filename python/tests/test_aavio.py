@@ -115,3 +115,9 @@ def test_bad_input_raises_with_the_fix(twin, tmp_path):
         odo.push_events("middle", events[:1])
     with pytest.raises(ValueError, match="packet_s"):
         next(iter(seq.packets(packet_s=0)))
+    with pytest.raises(TypeError, match="a list of 'key=value' strings, got an item 1"):
+        aavio.run(twin[0], set=[1, 2, 3])
+    with pytest.raises(TypeError, match="the path of a TUM trajectory file, got None"):
+        aavio.evaluate(None, None)
+    with pytest.raises(ValueError, match="is a device, not a file"):
+        aavio.read_trajectory("/dev/zero")
