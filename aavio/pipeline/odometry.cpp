@@ -96,9 +96,10 @@ Status Odometry::SkipEventGap(TimeNs resume_ns) {
   // The ticks before the gap still waiting for IMU samples run with what there is.
   AAVIO_RETURN_IF_ERROR(RunTicks(TickPolicy::kEvery, /*finishing=*/true));
   pending_gap_ = EventGap{last_event_ns_, resume_ns};
-  // The first tick after the events return, on the same grid (a whole number of ticks on).
+  // The ticks go on at the last grid time at or before the events' return (that tick says
+  // there was a gap, even if the data ends there), a whole number of ticks on.
   if (next_tick_ns_ <= resume_ns)
-    next_tick_ns_ += ((resume_ns - next_tick_ns_) / tick_ns_ + 1) * tick_ns_;
+    next_tick_ns_ += (resume_ns - next_tick_ns_) / tick_ns_ * tick_ns_;
   last_tick_ns_ = next_tick_ns_ - tick_ns_;
   if (next_cycle_ns_ < next_tick_ns_)
     next_cycle_ns_ += (next_tick_ns_ - next_cycle_ns_ + cycle_ns_ - 1) / cycle_ns_ * cycle_ns_;

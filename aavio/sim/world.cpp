@@ -194,6 +194,13 @@ Status SimulationRequest::Validate() const {
   constexpr double kDay_s = 86400.0;
   FieldChecker check;
   if (duration_s) check.InRange("duration_s", *duration_s, 1e-3, kDay_s);
+  // The sequence's length: asked for, or the preset's when its own motion is followed (a
+  // recorded trajectory's is known only once read).
+  std::optional<double> length_s = duration_s;
+  if (!length_s && trajectory.empty()) {
+    if (Expected<SimulationPreset> p = GetSimulationPreset(preset); p.ok())
+      length_s = p->duration_s;
+  }
   check.InRange("speed", speed, 0.05, 10.0);
   if (baseline_m) check.InRange("baseline_m", *baseline_m, 0.01, 2.0);
   if (!scene.empty() && !SceneKindNamed(scene).ok())
@@ -214,16 +221,16 @@ Status SimulationRequest::Validate() const {
       check.InRange("disturbances.factor", d.factor, 1.0, 20.0);
     // A stop must end within the sequence (its motion resumes); any other stretch must at least
     // begin within it, or it would silently do nothing.
-    if (d.kind == Disturbance::Kind::kStop && duration_s)
-      check.Require(d.start_s + d.duration_s <= *duration_s, "disturbances",
+    if (d.kind == Disturbance::Kind::kStop && length_s)
+      check.Require(d.start_s + d.duration_s <= *length_s, "disturbances",
                     "stop from " + FieldChecker::Num(d.start_s) + " s for " +
                         FieldChecker::Num(d.duration_s) + " s ends after the sequence (" +
-                        FieldChecker::Num(*duration_s) +
+                        FieldChecker::Num(*length_s) +
                         " s): a stop must end within it (lengthen --duration or shorten it)");
-    if (d.kind != Disturbance::Kind::kStop && duration_s)
-      check.Require(d.start_s < *duration_s, "disturbances",
+    if (d.kind != Disturbance::Kind::kStop && length_s)
+      check.Require(d.start_s < *length_s, "disturbances",
                     "a stretch from " + FieldChecker::Num(d.start_s) +
-                        " s starts after the sequence ends (" + FieldChecker::Num(*duration_s) +
+                        " s starts after the sequence ends (" + FieldChecker::Num(*length_s) +
                         " s) and would change nothing: start it earlier or lengthen --duration");
   }
   return check.status();
@@ -271,9 +278,10 @@ Expected<SimulationWorld> BuildSimulationWorld(const SimulationRequest& request)
                                        std::atan(0.5 * K.width / K.fx),
                                        preset->scene == SceneKind::kStreet, request.seed};
   const WorldEffectsAdded added = AddWorldEffects(request.world_effects, placement, &scene);
-  return SimulationWorld{std::move(*preset),        std::move(*sensor), std::move(*rig),
-                         std::move(*calibration_rig), std::move(*motion), std::move(*spline),
-                         std::move(scene),          added,              T_world_canonical};
+  return SimulationWorld{
+      std::move(*preset), std::move(*sensor), std::move(*rig),  std::move(*calibration_rig),
+      std::move(*motion), std::move(*spline), std::move(scene), added,
+      T_world_canonical};
 }
 
 }  // namespace aavio::sim

@@ -223,6 +223,11 @@ void RegisterSimulate(CLI::App& app, Context& ctx) {
       }
       if (*duration > 0.0) request->duration_s = *duration;
       if (*baseline > 0.0) request->baseline_m = *baseline;
+      // Every field of the request comes from an option: a value it refuses is a wrong argument.
+      if (const Status valid = request->Validate(); !valid.ok()) {
+        ctx.err << "aavio simulate: error: " << valid.message() << "\n";
+        return static_cast<int>(kExitUsage);
+      }
       return RunSimulate(*request, *quiet, ctx);
     };
   });
