@@ -166,10 +166,11 @@ Trajectory Run(const std::string& sequence_path, const std::string& calibration,
                       description.imu.has_value());
   // As `aavio run` feeds the odometry: the reader's packets in order.
   Status status = Status::Ok();
+  bool interrupted = false;
   {
     py::gil_scoped_release release;
     io::SensorPacket packet;
-    for (;;) {
+    for (std::int64_t packets = 1;; ++packets) {
       Expected<bool> more = reader->Next(&packet);
       if (!more) {
         status = more.status();
@@ -178,8 +179,17 @@ Trajectory Run(const std::string& sequence_path, const std::string& calibration,
       if (!*more || packet.t_begin_ns >= end) break;
       status = odometry.PushPacket(packet, std::min(packet.t_end_ns, end));
       if (!status.ok()) break;
+      // Ctrl-C: Python's handler runs here, every 100 packets (0.1 s of data).
+      if (packets % 100 == 0) {
+        py::gil_scoped_acquire acquire;
+        if (PyErr_CheckSignals() != 0) {
+          interrupted = true;
+          break;
+        }
+      }
     }
   }
+  if (interrupted) throw py::error_already_set();  // KeyboardInterrupt
   Check(status);
   odometry.Finish(end);
   return odometry.trajectory();
