@@ -189,7 +189,7 @@ TEST(Cli, ConfigErrorsAreClear) {
   EXPECT_NE(r.err.find("mapping.rate_hz: expected a finite number, got 'nan'"), std::string::npos)
       << r.err;
   r = RunAavio({"config", "--set", "mapping.eta=-1"});
-  EXPECT_EQ(r.code, kExitError);
+  EXPECT_EQ(r.code, kExitUsage);  // a number out of range given as an argument
   EXPECT_NE(r.err.find("invalid configuration: mapping.eta = -1 must be >= 0"), std::string::npos)
       << r.err;
   r = RunAavio({"config", "--preset", "kitti"});

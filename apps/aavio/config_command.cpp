@@ -106,7 +106,7 @@ int RunConfig(ConfigOptions options, Context& ctx) {
   Expected<pipeline::OdometryConfig> config = config::ResolveOdometryConfig(options.sources);
   if (!config) {
     ctx.err << "aavio config: error: " << config.status().message() << "\n";
-    return kExitError;
+    return ConfigErrorExitCode(options.sources);
   }
   if (options.list) {
     pipeline::OdometryConfig copy = *config;

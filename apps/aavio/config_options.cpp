@@ -5,6 +5,7 @@
 #include "aavio/common/config_fields.hpp"
 #include "aavio/io/presets.hpp"
 #include "aavio/pipeline/odometry_config.hpp"
+#include "cli.hpp"
 
 namespace aavio::cli {
 
@@ -33,6 +34,13 @@ void AddConfigOptions(CLI::App& sub, config::ConfigSources* sources) {
             return applied.ok() ? std::string() : applied.message();
           },
           "", ""));
+}
+
+int ConfigErrorExitCode(const config::ConfigSources& sources) {
+  if (sources.overrides.empty()) return kExitError;
+  config::ConfigSources without = sources;
+  without.overrides.clear();
+  return config::ResolveOdometryConfig(without).ok() ? kExitUsage : kExitError;
 }
 
 }  // namespace aavio::cli

@@ -25,12 +25,15 @@ struct RepresentationsOptions {
   config::ConfigSources config;
 };
 
-Status Run(RepresentationsOptions options, Context& ctx) {
+Status Run(RepresentationsOptions options, Context& ctx, int* exit_code) {
   Expected<OpenedSequence> opened = OpenSequence(options.sequence, options.calibration);
   if (!opened) return opened.status();
   config::ConfigureForRig(opened->calibration.rig, &options.config);
   Expected<pipeline::OdometryConfig> config = config::ResolveOdometryConfig(options.config);
-  if (!config) return config.status();
+  if (!config) {
+    *exit_code = ConfigErrorExitCode(options.config);
+    return config.status();
+  }
   const geometry::StereoRig& rig = opened->calibration.rig;
   io::SequenceReader* reader = opened->reader.get();
   const TimeNs start = reader->start_ns(), end = reader->end_ns();
@@ -112,10 +115,11 @@ void RegisterRepresentations(CLI::App& app, Context& ctx) {
   AddConfigOptions(*sub, &options->config);
   sub->callback([&ctx, options] {
     ctx.action = [&ctx, options] {
-      const Status status = Run(*options, ctx);
+      int exit_code = kExitError;
+      const Status status = Run(*options, ctx, &exit_code);
       if (status.ok()) return static_cast<int>(kExitOk);
       ctx.err << "aavio representations: error: " << status.message() << "\n";
-      return static_cast<int>(kExitError);
+      return exit_code;
     };
   });
 }

@@ -260,9 +260,11 @@ Fed FeedPackets(io::SequenceReader* reader, TimeNs begin, TimeNs end,
   return fed;
 }
 
-// Returns whether the run was interrupted (its outputs hold what was done).
-Expected<bool> Run(RunOptions options, Context& ctx) {
+// Returns whether the run was interrupted (its outputs hold what was done); on an error,
+// `exit_code` says whether it is a wrong argument.
+Expected<bool> Run(RunOptions options, Context& ctx, int* exit_code) {
   if (options.repeat > 1 && (options.gt_poses || options.gt_map)) {
+    *exit_code = kExitUsage;
     return InvalidArgument(
         "--repeat is for the full odometry; --gt-poses and --gt-map follow "
         "the ground truth, which a repeated sequence does not have");
@@ -276,7 +278,10 @@ Expected<bool> Run(RunOptions options, Context& ctx) {
   if (options.esvo) options.config.overlays.push_back("esvo");
   if (options.real_time) options.config.overrides.push_back("pipeline.real_time=true");
   Expected<pipeline::OdometryConfig> config = config::ResolveOdometryConfig(options.config);
-  if (!config) return config.status();
+  if (!config) {
+    *exit_code = ConfigErrorExitCode(options.config);
+    return config.status();
+  }
   const geometry::StereoRig& rig = opened->calibration.rig;
   io::SequenceReader* reader = opened->reader.get();
 
@@ -470,10 +475,11 @@ void RegisterRun(CLI::App& app, Context& ctx) {
                    "each other; give neither for the full odometry\n";
         return static_cast<int>(kExitUsage);
       }
-      const Expected<bool> interrupted = Run(*options, ctx);
+      int exit_code = kExitError;
+      const Expected<bool> interrupted = Run(*options, ctx, &exit_code);
       if (!interrupted) {
         ctx.err << "aavio run: error: " << interrupted.status().message() << "\n";
-        return static_cast<int>(kExitError);
+        return exit_code;
       }
       return static_cast<int>(*interrupted ? kExitInterrupted : kExitOk);
     };

@@ -210,6 +210,12 @@ case('set_nan', ['run', SEQ, '--out', 'out', '--set', 'mapping.rate_hz=nan'], 2,
      "expected a finite number, got 'nan'", max_seconds=5)
 case('set_unknown_key', ['run', SEQ, '--out', 'out', '--set', 'mapping.rte_hz=3'], 2,
      "did you mean 'mapping.rate_hz'", max_seconds=5)
+case('set_out_of_range', ['run', SEQ, '--out', 'out', '--set', 'mapping.eta=-1'], 2,
+     'mapping.eta = -1 must be >= 0', max_seconds=10)
+case('config_file_out_of_range', ['run', SEQ, '--out', 'out', '--config', 'c.yaml'], 1,
+     'mapping.eta = -1 must be >= 0',
+     setup=lambda d: open(os.path.join(d, 'c.yaml'), 'w').write('mapping:\n  eta: -1\n'),
+     max_seconds=10)
 case('start_not_a_number', ['run', SEQ, '--out', 'out', '--start', 'abc'], 2,
      "'abc' is not a number", max_seconds=5)
 
