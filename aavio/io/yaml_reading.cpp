@@ -51,7 +51,8 @@ Expected<YAML::Node> LoadText(const std::string& text, const std::string& origin
     return root;
   } catch (const YAML::Exception& e) {
     return ParseError(origin + ":" + std::to_string(e.mark.line + 1) + ":" +
-                      std::to_string(e.mark.column + 1) + ": YAML syntax error: " + e.msg);
+                      std::to_string(e.mark.column + 1) +
+                      ": YAML syntax error: " + PrintableExcerpt(e.msg, 200));
   }
 }
 
