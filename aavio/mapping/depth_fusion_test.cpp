@@ -313,5 +313,29 @@ TEST(SgmBootstrap, DepthOfAShiftedTextureAndTooFewPoints) {
             std::string::npos);
 }
 
+TEST(SgmBootstrap, AWideRigsDisparitiesLeaveHalfTheImage) {
+  // Depths whose disparities run from 40 to 200 px on a 160 px wide pair (a wide baseline close
+  // up): searching 0-207 would leave no column; the search is 40-119, found right of column 120.
+  const RectifiedStereo stereo = testing::SmallStereo();
+  cv::Mat left8, right8;
+  const cv::Mat left = testing::Texture(160, 120, 5);
+  left.convertTo(left8, CV_8U);
+  testing::Shifted(left, 60.0, 0.0).convertTo(right8, CV_8U);
+  MappingConfig config;
+  config.inv_depth_min = stereo.InvDepthOfDisparity(40.0);
+  config.inv_depth_max = stereo.InvDepthOfDisparity(200.0);
+  config.bootstrap.min_points = 100;
+  const Expected<std::vector<DepthPoint>> sgm =
+      BootstrapWithSgm(left8, right8, SampleGrid(), stereo, config.bootstrap,
+                       config.depth_refinement.student_t_nu, config.inv_depth_range());
+  ASSERT_TRUE(sgm.ok()) << sgm.status().message();
+  int right = 0;
+  for (const DepthPoint& p : *sgm) {
+    EXPECT_GE(p.u, 120.0f);
+    right += std::abs(stereo.Disparity(p.rho) - 60.0) < 0.5;
+  }
+  EXPECT_GT(right, static_cast<int>(sgm->size()) * 9 / 10);
+}
+
 }  // namespace
 }  // namespace aavio::mapping

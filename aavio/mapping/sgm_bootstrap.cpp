@@ -15,12 +15,22 @@ Expected<std::vector<DepthPoint>> BootstrapWithSgm(const cv::Mat& ts_left, const
                                                    const BootstrapConfig& b, double student_t_nu,
                                                    InvDepthRange rho_range) {
   const DisparityRange range = StaticDisparityRange(stereo, rho_range);
-  // OpenCV wants a positive multiple of 16 disparities, starting at 0.
-  const int disparities = std::max(16, (range.max + 15) / 16 * 16);
+  // OpenCV searches [min, min + n) with n a positive multiple of 16, and finds nothing left of
+  // column min + n. From 0 to the nearest depth's disparity while that leaves half the image;
+  // a wider rig's search (a 60 cm baseline at 1 m: 120 px on a 240 px image) starts at the far
+  // end of the depth range and spans half the width, nearer points left to the mapping cycles.
+  const int half_width = std::max(16, stereo.width / 2 / 16 * 16);
+  int min_disparity = 0;
+  int disparities = std::max(16, (range.max + 15) / 16 * 16);
+  if (disparities > half_width) {
+    min_disparity = std::max(0, range.min);
+    disparities = std::min(half_width, std::max(16, (range.max - min_disparity + 16) / 16 * 16));
+  }
   constexpr int kBlock = 11, kUniquenessRatio = 11;
   constexpr int kArea = kBlock * kBlock;
   cv::Ptr<cv::StereoSGBM> sgm =
-      cv::StereoSGBM::create(0, disparities, kBlock, 8 * kArea, 32 * kArea, /*disp12MaxDiff=*/-1,
+      cv::StereoSGBM::create(min_disparity, disparities, kBlock, 8 * kArea, 32 * kArea,
+                             /*disp12MaxDiff=*/-1,
                              /*preFilterCap=*/0, kUniquenessRatio, /*speckleWindowSize=*/0,
                              /*speckleRange=*/0, cv::StereoSGBM::MODE_SGBM);
   cv::Mat disparity;  // CV_16S, disparity × 16
@@ -36,7 +46,7 @@ Expected<std::vector<DepthPoint>> BootstrapWithSgm(const cv::Mat& ts_left, const
     if (t) continue;
     t = 1;
     const short d16 = disparity.at<short>(v, u);
-    if (d16 <= 0) continue;  // invalid (negative) or infinitely far
+    if (d16 < min_disparity * 16 || d16 <= 0) continue;  // invalid, or infinitely far
     const double rho = stereo.InvDepthOfDisparity(d16 / 16.0);
     if (!rho_range.Contains(rho)) continue;
     DepthPoint p;
