@@ -103,8 +103,10 @@ Status Odometry::SkipEventGap(TimeNs resume_ns) {
   last_tick_ns_ = next_tick_ns_ - tick_ns_;
   if (next_cycle_ns_ < next_tick_ns_)
     next_cycle_ns_ += (next_tick_ns_ - next_cycle_ns_ + cycle_ns_ - 1) / cycle_ns_ * cycle_ns_;
-  // What the camera did meanwhile is unknown: mapping starts again at the held pose.
+  // What the camera did meanwhile is unknown: mapping starts again at the held pose (a
+  // re-initialisation if there was a map; before the first one, events starting late, it is not).
   if (run_mapping_) {
+    gap_restarts_mapping_ = mapper_.initialized();
     Reinitialise(last_tick_ns_, T_world_held_, /*keep_velocity=*/false);
   } else {
     tracker_.Reset(last_tick_ns_, T_world_held_);
@@ -234,7 +236,7 @@ Status Odometry::Tick(TimeNs t_ns, int skipped_ticks) {
   tick.T_world_cam = tracked.T_world_cur;
   T_world_held_ = tracked.T_world_cur;
   tick.gap_before = std::exchange(pending_gap_, std::nullopt);
-  tick.reinitialised = tick.gap_before && run_mapping_;
+  tick.reinitialised = tick.gap_before && gap_restarts_mapping_;
   tick.status = tracked.status;
   tick.lost_reason = tracked.lost_reason;
   // A tracked pose that the accelerometer contradicts is lost, and the map that misled it goes.

@@ -64,7 +64,8 @@ struct OdometryTick {
   /// again on the next tick).
   std::string bootstrap_failure;
   bool reinitialised = false;  ///< tracking was lost too long: mapping was reset here
-  /// The first tick after an event gap: the gap, whose ticks were not run (mapping restarted).
+  /// The first tick after an event gap: the gap, whose ticks were not run (mapping restarted;
+  /// `reinitialised` if a map was thrown away).
   std::optional<EventGap> gap_before;
   /// Ticks due before this one that were not run (TickPolicy::kLatest: a live input catching
   /// up); their events are in this tick's time surfaces.
@@ -176,6 +177,7 @@ class Odometry {
   int lost_ticks_ = 0;
   TimeNs last_event_ns_;                   // the newest event of either camera (the start before)
   std::optional<EventGap> pending_gap_;    // for the next tick's gap_before
+  bool gap_restarts_mapping_ = false;      // ... and whether it threw a map away
   geometry::RigidTransform T_world_held_;  // the last tick's pose: where a gap's ticks resume
   double last_insertion_ms_ = 0.0;
 };

@@ -294,6 +294,31 @@ TEST(Odometry, AnHourWithoutEventsIsSkippedNotTickedThrough) {
   EXPECT_TRUE(bootstrapped);
 }
 
+TEST(Odometry, EventsStartingLateAreAGapButNoReinitialisation) {
+  // The run starts 8 s before the first event (an IMU recording from earlier, say): no ticks
+  // through the silence, and no map was thrown away.
+  const aavio::testing::SimulatedSequence& r = Mini();
+  ASSERT_TRUE(r.rig);
+  Odometry odometry(*r.rig, RpgPreset(), r.start_ns - SecondsToNs(8.0));
+  std::vector<OdometryTick> ticks;
+  odometry.on_tick = [&](const OdometryTick& t) { ticks.push_back(t); };
+  for (const io::SensorPacket& p : r.packets)
+    ASSERT_TRUE(odometry.Process(p.left, p.right, p.imu, p.t_end_ns).ok());
+  ASSERT_TRUE(odometry.Finish().ok());
+  ASSERT_FALSE(ticks.empty());
+  ASSERT_TRUE(ticks.front().gap_before.has_value());
+  EXPECT_EQ(ticks.front().gap_before->from_ns, r.start_ns - SecondsToNs(8.0));
+  EXPECT_FALSE(ticks.front().reinitialised);
+  EXPECT_GE(ticks.front().t_ns + SecondsToNs(0.01), ticks.front().gap_before->to_ns);
+  int reinitialisations = 0, bootstraps = 0;
+  for (const OdometryTick& t : ticks) {
+    reinitialisations += t.reinitialised;
+    bootstraps += t.bootstrap;
+  }
+  EXPECT_EQ(reinitialisations, 0);
+  EXPECT_EQ(bootstraps, 1);
+}
+
 // The process's peak resident memory so far, in MB.
 double PeakResidentMb() {
   std::ifstream status("/proc/self/status");
