@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <random>
+#include <utility>
 
 #include "aavio/geometry/rotation.hpp"
 #include "aavio/mapping/local_map.hpp"
@@ -287,12 +288,18 @@ std::vector<Eigen::Vector2f> SampleGrid() {
   return points;
 }
 
-TEST(SgmBootstrap, DepthOfAShiftedTextureAndTooFewPoints) {
-  const RectifiedStereo stereo = testing::SmallStereo();
+// A textured 8-bit time-surface pair whose right image is the left shifted by `disparity_px`.
+std::pair<cv::Mat, cv::Mat> TexturePair(double disparity_px) {
   cv::Mat left8, right8;
   const cv::Mat left = testing::Texture(160, 120, 5);
   left.convertTo(left8, CV_8U);
-  testing::Shifted(left, 16.0, 0.0).convertTo(right8, CV_8U);
+  testing::Shifted(left, disparity_px, 0.0).convertTo(right8, CV_8U);
+  return {left8, right8};
+}
+
+TEST(SgmBootstrap, DepthOfAShiftedTextureAndTooFewPoints) {
+  const RectifiedStereo stereo = testing::SmallStereo();
+  const auto [left8, right8] = TexturePair(16.0);
   const std::vector<Eigen::Vector2f> points = SampleGrid();
   MappingConfig config;
   config.bootstrap.min_points = 100;
@@ -317,10 +324,7 @@ TEST(SgmBootstrap, AWideRigsDisparitiesLeaveHalfTheImage) {
   // Depths whose disparities run from 40 to 200 px on a 160 px wide pair (a wide baseline close
   // up): searching 0-207 would leave no column; the search is 40-119, found right of column 120.
   const RectifiedStereo stereo = testing::SmallStereo();
-  cv::Mat left8, right8;
-  const cv::Mat left = testing::Texture(160, 120, 5);
-  left.convertTo(left8, CV_8U);
-  testing::Shifted(left, 60.0, 0.0).convertTo(right8, CV_8U);
+  const auto [left8, right8] = TexturePair(60.0);
   MappingConfig config;
   config.inv_depth_min = stereo.InvDepthOfDisparity(40.0);
   config.inv_depth_max = stereo.InvDepthOfDisparity(200.0);
