@@ -244,6 +244,19 @@ Expected<geometry::StereoRig> VectorRig() {
       geometry::RigidTransform::FromMatrix(T), {});
 }
 
+// An iniVation DVXplorer pair (640×480, 9 µm pixels) as the EvSLAM 2026 challenge's stereo rig
+// uses; its calibration is not public, so the numbers are a typical build of such a rig: a 4 mm
+// lens (f 444 px, 71° across), mild radial distortion, 10 cm baseline, cameras parallel.
+Expected<geometry::StereoRig> DvxplorerRig() {
+  const CameraIntrinsics camera{
+      640, 480, 444.0, 444.0, 321.5, 238.5, DistortionModel::kRadtan, {-0.09, 0.06, 0.0, 0.0}};
+  const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
+  constexpr double kFocalRect = 430.0;  // the rectified image keeps the distorted corners out
+  return Make(camera, camera, I, I, Projection(kFocalRect, 319.5, 239.5, 0.0),
+              Projection(kFocalRect, 319.5, 239.5, -kFocalRect * 0.10),
+              {I, Eigen::Vector3d(-0.10, 0.0, 0.0)}, {});
+}
+
 // An ideal rectified pinhole pair (no distortion, parallel cameras): f 200 px, baseline 0.15 m,
 // the IMU on the left camera.
 Expected<geometry::StereoRig> PinholeRig() {
@@ -296,6 +309,12 @@ std::vector<SimulationPreset> AllPresets() {
     p->camera = CameraKind::kProphesee;
     presets.push_back(*p);
   }
+  SimulationPreset dvxplorer =
+      Preset("dvxplorer", "iniVation DVXplorer 640x480 pair (EvSLAM 2026 rig), hall, drone flight",
+             SceneKind::kHall, MotionKind::kDrone, 20.0, &DvxplorerRig);
+  dvxplorer.events = rpg.events;
+  dvxplorer.camera = CameraKind::kDvxplorer;
+  presets.push_back(dvxplorer);
   SimulationPreset planes =
       Preset("planes", "ideal 240x180 pinhole pair, sparse scene of textured planes, sinusoid",
              SceneKind::kPlanes, MotionKind::kSinusoid, 8.0, &PinholeRig);

@@ -24,7 +24,9 @@ namespace aavio::sim {
 enum class MotionKind { kHandHeld, kDriving, kDrone, kSinusoid };
 /// The sensor family, for the realistic sensor levels (sensor_model.hpp): their refractory
 /// period, noise and readout differ.
-enum class CameraKind { kDavis, kProphesee };
+/// The sensor family, for what the sensor model's levels take from it (refractory period,
+/// background activity, readout rate).
+enum class CameraKind { kDavis, kProphesee, kDvxplorer };
 
 struct SimulationPreset {
   std::string name;

@@ -24,6 +24,10 @@ SensorModel Typical(const SensorModel& ideal, CameraKind camera) {
   SensorModel m = ideal;
   EventCameraConfig& e = m.events;
   const bool davis = camera == CameraKind::kDavis;
+  // iniVation DVXplorer: a DAVIS's background activity (a quiet one: 0.43 ev/px/s), a
+  // Prophesee's short refractory period (0.19 ms: first percentile of its same-pixel intervals).
+  const bool dvxplorer = camera == CameraKind::kDvxplorer;
+  const bool davis_noise = davis || dvxplorer;
   // Contrast thresholds: ON above OFF (real DAVIS240C recordings fire 0.43–0.45 ON), mismatch
   // σ 0.035 log (DVS/DAVIS characterisations: 2–4 % contrast).
   const double mean = (e.threshold_on + e.threshold_off) / 2.0;
@@ -33,15 +37,16 @@ SensorModel Typical(const SensorModel& ideal, CameraKind camera) {
   e.bandwidth_hz = 1000.0;  // cutoff at full illumination; a grey 0.3 sees 300 Hz
   // Real DAVIS240C: no pixel fires twice within ~1.7 ms (1st percentile of same-pixel
   // intervals); Prophesee Gen3: 27 µs.
-  e.refractory_us = davis ? 1500.0 : 25.0;
+  e.refractory_us = davis ? 1500.0 : dvxplorer ? 190.0 : 25.0;
   e.noise_rate_hz = 0.0;  // background activity comes from leak and shot noise instead
-  e.leak_rate_hz = davis ? 0.1 : 0.05;
+  e.leak_rate_hz = davis_noise ? 0.1 : 0.05;
   e.leak_rate_spread = 0.3;
-  e.shot_noise_rate_hz = davis ? 0.5 : 0.2;
-  e.hot_pixel_fraction = davis ? 1e-4 : 2e-5;
-  e.hot_pixel_rate_hz = davis ? 50.0 : 200.0;
+  e.shot_noise_rate_hz = davis_noise ? 0.5 : 0.2;
+  e.hot_pixel_fraction = davis_noise ? 1e-4 : 2e-5;
+  e.hot_pixel_rate_hz = davis_noise ? 50.0 : 200.0;
   e.timestamp_jitter_us = 20.0;
-  e.max_rate_mev_s = davis ? 12.0 : 50.0;  // DAVIS240C/346 datasheet; Prophesee VGA
+  // Datasheets: DAVIS240C/346, DVXplorer (165 Mev/s), Prophesee VGA.
+  e.max_rate_mev_s = davis ? 12.0 : dvxplorer ? 165.0 : 50.0;
   // IMU: the MPU-6150 datasheet's white noise, a bias left after a factory calibration.
   const ImuNoiseModel datasheet = ImuNoiseModel::Datasheet();
   m.imu.gyro_noise_density = datasheet.gyro_noise_density;

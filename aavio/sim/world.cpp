@@ -40,9 +40,28 @@ double Speed(const std::vector<Disturbance>& disturbances, double t_s) {
 double ExtraMotionS(const std::vector<Disturbance>& disturbances) {
   double extra = 0.0;
   for (const Disturbance& d : disturbances) {
-    if (WarpsTime(d)) extra += (Factor(d) - 1.0) * 0.75 * d.duration_s;
+    if (!WarpsTime(d)) continue;
+    if (d.start_s >= 0.0) {
+      extra += (Factor(d) - 1.0) * 0.75 * d.duration_s;
+      continue;
+    }
+    // A stretch begun before the start (the rest at the start): only its part from 0 counts.
+    constexpr double kStep_s = 1e-4;
+    for (double t = 0.5 * kStep_s; t < d.start_s + d.duration_s; t += kStep_s)
+      extra += (Speed({d}, t) - 1.0) * kStep_s;
   }
   return extra;
+}
+
+// The disturbances that warp time, with the rest at the start as a stop whose standstill begins
+// at 0: a stretch of 2·rest from −rest/2 (its slowing down lies before the start).
+std::vector<Disturbance> TimeWarps(const SimulationRequest& request) {
+  std::vector<Disturbance> warps = request.disturbances;
+  if (request.rest_at_start_s > 0.0) {
+    warps.push_back(
+        {Disturbance::Kind::kStop, -0.5 * request.rest_at_start_s, 2.0 * request.rest_at_start_s});
+  }
+  return warps;
 }
 
 // Restamps the poses (stamps in motion time) to data time through the warp above: data time
@@ -154,10 +173,10 @@ void ApplySpeed(double speed, std::vector<geometry::StampedPose>* poses) {
 }
 
 Expected<CameraPath> BuildMotion(const SimulationRequest& request, const SimulationPreset& preset) {
-  Expected<CameraPath> path =
-      FollowedMotion(request, preset, request.speed * ExtraMotionS(request.disturbances));
+  const std::vector<Disturbance> warps = TimeWarps(request);
+  Expected<CameraPath> path = FollowedMotion(request, preset, request.speed * ExtraMotionS(warps));
   if (path) ApplySpeed(request.speed, &path->poses);
-  if (path) WarpTime(request.disturbances, &path->poses);
+  if (path) WarpTime(warps, &path->poses);
   if (path && path->poses.size() < 2) {
     return InvalidArgument(
         "disturbances: the stops leave no motion to follow; a stop must end within the sequence");
@@ -202,6 +221,13 @@ Status SimulationRequest::Validate() const {
       length_s = p->duration_s;
   }
   check.InRange("speed", speed, 0.05, 10.0);
+  check.InRange("rest_at_start_s", rest_at_start_s, 0.0, kDay_s);
+  if (length_s && rest_at_start_s > 0.0)
+    check.Require(1.5 * rest_at_start_s < *length_s, "rest_at_start_s",
+                  "= " + FieldChecker::Num(rest_at_start_s) +
+                      " s leaves the camera no time to move: it stands still for it and speeds "
+                      "up over half of it, within the sequence's " +
+                      FieldChecker::Num(*length_s) + " s (shorten it or lengthen --duration)");
   if (baseline_m) check.InRange("baseline_m", *baseline_m, 0.01, 2.0);
   if (!scene.empty() && !SceneKindNamed(scene).ok())
     check.Require(false, "scene", "= " + SceneKindNamed(scene).status().message());

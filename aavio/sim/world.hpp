@@ -13,8 +13,8 @@
 #include "aavio/sim/presets.hpp"
 #include "aavio/sim/recorded_motion.hpp"
 #include "aavio/sim/scene.hpp"
-#include "aavio/sim/world_effects.hpp"
 #include "aavio/sim/sensor_model.hpp"
+#include "aavio/sim/world_effects.hpp"
 
 namespace aavio::sim {
 
@@ -49,6 +49,9 @@ struct SimulationRequest {
   /// The motion played this many times as fast (0.05–10): the same path in 1/speed of the time,
   /// for slow and fast versions of a motion. Durations and disturbances are in data time.
   double speed = 1.0;
+  /// The camera stands still for this long from the start, then speeds up into its motion over
+  /// half as long (a start at rest: nothing but noise in view until it moves). 0: it is moving.
+  double rest_at_start_s = 0.0;
   std::string scene;                    ///< a scene by name (SceneKindNamed); empty: the preset's
   std::string motion;                   ///< a built-in motion by name; empty: the preset's
   std::string trajectory;               ///< TUM file: follow a recorded camera path (a twin)
@@ -56,9 +59,9 @@ struct SimulationRequest {
   std::optional<double> baseline_m;     ///< the rig's baseline replaced (0.01–2 m)
   std::string body_to_camera = "auto";  ///< identity | driving | auto (driving rule for cars)
   bool preview = false;
-  std::string sensor = "typical";         ///< ideal | typical | harsh | a sensor YAML file
-  std::vector<std::string> effects;       ///< only these effects of the sensor (empty: all)
-  std::vector<Disturbance> disturbances;  ///< darkness, a camera off, too fast a motion, a stop
+  std::string sensor = "typical";          ///< ideal | typical | harsh | a sensor YAML file
+  std::vector<std::string> effects;        ///< only these effects of the sensor (empty: all)
+  std::vector<Disturbance> disturbances;   ///< darkness, a camera off, too fast a motion, a stop
   std::vector<std::string> world_effects;  ///< flicker, moving_objects (world_effects.hpp)
 
   /// Errors name the field and its bounds (durations up to a day).
@@ -72,7 +75,7 @@ struct SimulationWorld {
   geometry::StereoRig calibration_rig;  ///< what the sequence's calibration says (with errors)
   CameraPath motion;
   MotionSpline spline;  ///< the rectified left camera in the world
-  Scene scene;  ///< with the world effects' lights and moving objects
+  Scene scene;          ///< with the world effects' lights and moving objects
   WorldEffectsAdded world_effects;
   /// The level scene frame (x right, y along gravity, z forward) in the world.
   geometry::RigidTransform T_world_canonical;

@@ -116,6 +116,36 @@ TEST(SimulationWorld, AStopBrakesStandsStillAndDrivesOn) {
               plain.spline.LinearVelocity(At(plain, 1.75)).norm(), 0.05 * cruise);
 }
 
+TEST(SimulationWorld, ARestAtTheStartStandsStillThenSpeedsUpIntoTheMotion) {
+  const SimulationWorld plain = World({});
+  SimulationRequest request;
+  request.preset = "mini";
+  request.duration_s = 3.0;
+  request.sensor = "ideal";
+  request.rest_at_start_s = 1.0;
+  Expected<SimulationWorld> rest = BuildSimulationWorld(request);
+  ASSERT_TRUE(rest.ok()) << rest.status().message();
+  // As long as asked; standing where the plain motion starts for the first second.
+  EXPECT_NEAR(NsToSeconds(rest->spline.t_end_ns() - rest->spline.t_begin_ns()), 3.0, 0.01);
+  const Eigen::Vector3d start = plain.spline.Position(At(plain, 0.0));
+  for (double t = 0.0; t <= 0.95; t += 0.05) {
+    EXPECT_LT((rest->spline.Position(At(*rest, t)) - start).norm(), 1e-3) << t;
+    EXPECT_LT(rest->spline.AngularVelocity(At(*rest, t)).norm(), 0.02) << t;
+  }
+  // Up to speed after half a second more: then it moves as the plain motion a quarter second
+  // into its path (the ramp covered a quarter of a second of it).
+  const double cruise = plain.spline.LinearVelocity(At(plain, 1.0)).norm();
+  ASSERT_GT(cruise, 0.1);
+  EXPECT_GT(rest->spline.LinearVelocity(At(*rest, 1.25)).norm(), 0.05 * cruise);
+  EXPECT_LT((rest->spline.Position(At(*rest, 2.0)) - plain.spline.Position(At(plain, 0.75))).norm(),
+            1e-3);
+  // A rest that leaves no time to move is refused.
+  request.rest_at_start_s = 2.5;
+  EXPECT_NE(request.Validate().message().find("rest_at_start_s = 2.5 s leaves the camera no time"),
+            std::string::npos)
+      << request.Validate().message();
+}
+
 TEST(SimulationWorld, AStopPastTheEndIsAClearError) {
   SimulationRequest request;
   request.preset = "mini";
@@ -128,8 +158,8 @@ TEST(SimulationWorld, AStopPastTheEndIsAClearError) {
 }
 
 TEST(SimulationWorld, AStretchAfterTheEndIsAClearError) {
-  for (const Disturbance::Kind kind : {Disturbance::Kind::kDark, Disturbance::Kind::kRightOff,
-                                       Disturbance::Kind::kFastMotion}) {
+  for (const Disturbance::Kind kind :
+       {Disturbance::Kind::kDark, Disturbance::Kind::kRightOff, Disturbance::Kind::kFastMotion}) {
     SimulationRequest request;
     request.preset = "mini";
     request.duration_s = 1.0;

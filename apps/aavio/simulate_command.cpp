@@ -158,6 +158,10 @@ void RegisterSimulate(CLI::App& app, Context& ctx) {
   sub->add_option("--speed", request->speed,
                   "The motion played FACTOR times as fast (0.05-10; 0.2: slow, 3: fast)")
       ->check(NumberIn(0.05, 10.0));
+  sub->add_option("--rest", request->rest_at_start_s,
+                  "The camera stands still for the first SECONDS, then speeds up into its motion "
+                  "over half as long (a start at rest)")
+      ->check(NumberIn(0.0, 3600.0));
   sub->add_option("--seed", request->seed, "Seed of the scene, motion, noise and sensor")
       ->check(Seed());
   sub->add_option("--trajectory", request->trajectory,
