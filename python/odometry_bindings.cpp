@@ -5,6 +5,7 @@
 #include <mutex>
 
 #include "aavio/config/config_sources.hpp"
+#include "aavio/config/scene_measurement.hpp"
 #include "aavio/io/calibration.hpp"
 #include "aavio/io/sequence.hpp"
 #include "aavio/pipeline/live_odometry.hpp"
@@ -42,14 +43,16 @@ std::vector<std::string> OverridesOf(const py::object& set) {
 
 class PyOdometry {
  public:
+  /// `scene`: the depth of the scene, when measured ahead (a sequence read whole).
   PyOdometry(const std::string& calibration, TimeNs start_ns, const std::string& preset,
              const std::vector<std::string>& config_files, const py::object& set, bool real_time,
-             double max_lag_s, bool wait_for_imu) {
+             double max_lag_s, bool wait_for_imu,
+             const std::optional<pipeline::SceneDepth>& scene = {}) {
     const io::LoadedCalibration loaded = Unwrap(io::LoadCalibration(calibration));
     sources_.preset = preset;
     sources_.files = config_files;
     sources_.overrides = OverridesOf(set);
-    preset_reason_ = config::ConfigureForRig(loaded.rig, &sources_);
+    preset_reason_ = config::ConfigureForRig(loaded.rig, &sources_, scene);
     const pipeline::OdometryConfig config = Unwrap(config::ResolveOdometryConfig(sources_));
     live_ = Unwrap(pipeline::LiveOdometry::Create(
         loaded.rig, config, start_ns,
@@ -161,9 +164,15 @@ Trajectory Run(const std::string& sequence_path, const std::string& calibration,
   const TimeNs begin = reader->start_ns() + SecondsToNs(start_s);
   const TimeNs end = duration_s ? begin + SecondsToNs(*duration_s) : reader->end_ns();
   if (start_s > 0.0) Check(reader->Seek(begin));
+  // As `aavio run`: with no preset named, the scene's first moments help choose one.
+  std::optional<pipeline::SceneDepth> scene;
+  if (preset.empty()) {
+    scene = Unwrap(config::MeasureSceneDepth(
+        reader.get(), Unwrap(io::LoadCalibration(description.calibration)).rig, begin, end));
+  }
   // A sequence without an IMU stream: the ticks do not wait for one.
   PyOdometry odometry(description.calibration, begin, preset, config_files, set, false, 0.05,
-                      description.imu.has_value());
+                      description.imu.has_value(), scene);
   // As `aavio run` feeds the odometry: the reader's packets in order.
   Status status = Status::Ok();
   bool interrupted = false;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <filesystem>
 
+#include "aavio/common/format.hpp"
 #include "aavio/io/config_yaml.hpp"
 #include "aavio/io/presets.hpp"
 
@@ -55,12 +56,34 @@ Status ApplySources(const ConfigSources& sources, pipeline::OdometryConfig* conf
 
 }  // namespace
 
-std::string ConfigureForRig(const geometry::StereoRig& rig, ConfigSources* sources) {
+std::string ConfigureForRig(const geometry::StereoRig& rig, ConfigSources* sources,
+                            const std::optional<pipeline::SceneDepth>& scene) {
   sources->sensor = pipeline::SensorFacts::Of(rig);
   if (!sources->preset.empty()) return "";
-  const pipeline::PresetSuggestion suggestion = pipeline::SuggestPreset(*sources->sensor);
+  pipeline::PresetSuggestion suggestion = pipeline::SuggestPreset(*sources->sensor);
+  if (!scene) {
+    sources->preset = suggestion.name;
+    return suggestion.reason;
+  }
+  const std::string seen =
+      StrFormat("the scene %.1f m away: median of %d edges %.1f s into the data",
+                scene->median_depth_m, scene->points, scene->at_s);
+  if (suggestion.name == "driving") {
+    // The driving preset's nearest depth, from the preset itself.
+    ConfigSources driving;
+    driving.preset = suggestion.name;
+    pipeline::OdometryConfig config;
+    const double nearest_m =
+        ApplySources(driving, &config).ok() ? 1.0 / config.mapping.inv_depth_max : 0.0;
+    if (scene->median_depth_m < nearest_m) {
+      sources->preset = "indoor";
+      return StrFormat(
+          "baseline %.2f m is a car's, but %s, nearer than the driving preset's %.0f m",
+          sources->sensor->baseline_m, seen.c_str(), nearest_m);
+    }
+  }
   sources->preset = suggestion.name;
-  return suggestion.reason;
+  return suggestion.reason + "; " + seen;
 }
 
 Expected<std::vector<pipeline::SensorSetting>> SensorSettingsOf(const ConfigSources& sources) {

@@ -15,6 +15,7 @@
 
 #include "aavio/common/status.hpp"
 #include "aavio/pipeline/odometry_config.hpp"
+#include "aavio/pipeline/scene_depth_probe.hpp"
 #include "aavio/pipeline/sensor_settings.hpp"
 
 namespace aavio::config {
@@ -28,8 +29,11 @@ struct ConfigSources {
 };
 
 /// Makes `sources` configure for `rig`: its sensor's settings and, when no preset is named, the
-/// preset the rig suggests. Returns why that preset ("" when one was named).
-std::string ConfigureForRig(const geometry::StereoRig& rig, ConfigSources* sources);
+/// preset the rig suggests — by its baseline, unless the scene's measured depth (`scene`, from
+/// pipeline::SceneDepthProbe) lies nearer than that preset's depth range reaches. Returns why
+/// that preset ("" when one was named).
+std::string ConfigureForRig(const geometry::StereoRig& rig, ConfigSources* sources,
+                            const std::optional<pipeline::SceneDepth>& scene = {});
 
 /// The settings derived from `sources.sensor` (none without one), for the scene the other
 /// sources make.

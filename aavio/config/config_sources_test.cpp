@@ -38,6 +38,27 @@ TEST(ConfigSources, AProgramConfiguresForItsRigInTwoCalls) {
   EXPECT_EQ(overridden->mapping.rate_hz, 5.0);
 }
 
+// A car's baseline in a room: the measured scene, nearer than the driving preset reaches,
+// makes it indoor; a street's keeps it driving. Each reason says what was seen.
+TEST(ConfigSources, TheSceneMeasuredNearerThanACarSeesMakesTheRigIndoor) {
+  ConfigSources room;
+  const std::string why = ConfigureForRig(Rig("dsec"), &room, pipeline::SceneDepth{800, 2.4, 0.3});
+  EXPECT_EQ(room.preset, "indoor");
+  EXPECT_NE(why.find("baseline 0.60 m is a car's, but the scene 2.4 m away: median of 800 edges "
+                     "0.3 s into the data, nearer than the driving preset's 4 m"),
+            std::string::npos)
+      << why;
+  ConfigSources street;
+  EXPECT_NE(ConfigureForRig(Rig("dsec"), &street, pipeline::SceneDepth{500, 12.0, 0.3})
+                .find("the scene 12.0 m away"),
+            std::string::npos);
+  EXPECT_EQ(street.preset, "driving");
+  // A named preset is never second-guessed.
+  ConfigSources named{.preset = "driving"};
+  EXPECT_EQ(ConfigureForRig(Rig("dsec"), &named, pipeline::SceneDepth{800, 2.4, 0.3}), "");
+  EXPECT_EQ(named.preset, "driving");
+}
+
 // The reference overlays take their code's budget for the rig. ESVO: 1 000 newest events on rpg's
 // DAVIS240C, 10 000 on DSEC's rig; the paper's (ICRA code): 5 000 AA samples on rpg of which
 // mapping takes 1 000, the sensor's 2 500 on DSEC. Whether named by --esvo or --config, and --set

@@ -5,11 +5,13 @@
 #include <ostream>
 
 #include "aavio/common/format.hpp"
+#include "aavio/config/scene_measurement.hpp"
 #include "aavio/io/calibration.hpp"
 #include "aavio/io/config_yaml.hpp"
 #include "aavio/io/sequence.hpp"
 #include "cli.hpp"
 #include "config_options.hpp"
+#include "sequence_opening.hpp"
 
 namespace aavio::cli {
 
@@ -101,7 +103,21 @@ int RunConfig(ConfigOptions options, Context& ctx) {
     }
     for (const std::string& warning : calibration->warnings)
       ctx.err << "warning: " << warning << "\n";
-    preset_reason = config::ConfigureForRig(calibration->rig, &options.sources);
+    // A sequence's first moments show how far its scene is, for the preset.
+    std::optional<pipeline::SceneDepth> scene;
+    if (options.sources.preset.empty() && !io::LoadCalibration(options.for_path).ok()) {
+      Expected<OpenedSequence> opened = OpenSequence(options.for_path, "");
+      Expected<std::optional<pipeline::SceneDepth>> measured =
+          opened ? config::MeasureSceneDepth(opened->reader.get(), calibration->rig,
+                                             opened->reader->start_ns(), opened->reader->end_ns())
+                 : Expected<std::optional<pipeline::SceneDepth>>(opened.status());
+      if (!measured) {
+        ctx.err << "aavio config: error: " << measured.status().message() << "\n";
+        return kExitError;
+      }
+      scene = *measured;
+    }
+    preset_reason = config::ConfigureForRig(calibration->rig, &options.sources, scene);
   }
   Expected<pipeline::OdometryConfig> config = config::ResolveOdometryConfig(options.sources);
   if (!config) {

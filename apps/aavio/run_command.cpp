@@ -18,6 +18,7 @@
 #include <ostream>
 
 #include "aavio/common/format.hpp"
+#include "aavio/config/scene_measurement.hpp"
 #include "aavio/io/config_yaml.hpp"
 #include "aavio/io/prefetching_reader.hpp"
 #include "aavio/io/trajectory_io.hpp"
@@ -61,18 +62,27 @@ extern "C" void OnInterrupt(int signal_number) {
   std::signal(signal_number, SIG_DFL);
 }
 
-// The configuration is for this sequence's rig: its sensor's settings, and the preset it
-// suggests when none is named (every mode of `aavio run`).
-void ConfigureForSequence(const OpenedSequence& opened, RunOptions* options, Context& ctx) {
+// The configuration is for this sequence's rig: its sensor's settings, and the preset it and
+// its first moments from `begin` suggest when none is named (every mode of `aavio run`).
+Status ConfigureForSequence(OpenedSequence& opened, TimeNs begin, TimeNs end, RunOptions* options,
+                            Context& ctx) {
   if (!options->quiet) {
     for (const std::string& warning : opened.calibration.warnings)
       ctx.err << "warning: " << warning << "\n";
   }
-  const std::string why = config::ConfigureForRig(opened.calibration.rig, &options->config);
+  std::optional<pipeline::SceneDepth> scene;
+  if (options->config.preset.empty()) {
+    Expected<std::optional<pipeline::SceneDepth>> measured =
+        config::MeasureSceneDepth(opened.reader.get(), opened.calibration.rig, begin, end);
+    if (!measured) return measured.status();
+    scene = *measured;
+  }
+  const std::string why = config::ConfigureForRig(opened.calibration.rig, &options->config, scene);
   if (!why.empty() && !options->quiet) {
     ctx.err << "aavio run: no --preset given; using '" << options->config.preset << "' (" << why
             << ")\n";
   }
+  return Status::Ok();
 }
 
 const char* ModeName(const RunOptions& o) {
@@ -272,7 +282,12 @@ Expected<bool> Run(RunOptions options, Context& ctx, int* exit_code) {
   Expected<OpenedSequence> opened =
       OpenSequence(options.sequence, options.calibration, options.repeat);
   if (!opened) return opened.status();
-  ConfigureForSequence(*opened, &options, ctx);
+  io::SequenceReader* reader = opened->reader.get();
+  const TimeNs begin = reader->start_ns() + SecondsToNs(options.start_s);
+  const TimeNs end =
+      options.duration_s > 0.0 ? begin + SecondsToNs(options.duration_s) : reader->end_ns();
+  if (options.start_s > 0.0) AAVIO_RETURN_IF_ERROR(reader->Seek(begin));
+  AAVIO_RETURN_IF_ERROR(ConfigureForSequence(*opened, begin, end, &options, ctx));
   // The ESVO-like mode is the shipped overlay configs/overlays/esvo.yaml (the embedded one, even
   // if a file named "esvo" is here), after the user's files; --set still applies.
   if (options.esvo) options.config.overlays.push_back("esvo");
@@ -283,12 +298,6 @@ Expected<bool> Run(RunOptions options, Context& ctx, int* exit_code) {
     return config.status();
   }
   const geometry::StereoRig& rig = opened->calibration.rig;
-  io::SequenceReader* reader = opened->reader.get();
-
-  const TimeNs begin = reader->start_ns() + SecondsToNs(options.start_s);
-  const TimeNs end =
-      options.duration_s > 0.0 ? begin + SecondsToNs(options.duration_s) : reader->end_ns();
-  if (options.start_s > 0.0) AAVIO_RETURN_IF_ERROR(reader->Seek(begin));
   // Worker threads of the parallel stages (TBB) and of OpenCV; 0 = all cores.
   cv::setNumThreads(config->pipeline.num_threads);
   std::optional<tbb::global_control> workers;

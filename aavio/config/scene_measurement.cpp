@@ -1,0 +1,35 @@
+#include "aavio/config/scene_measurement.hpp"
+
+#include <algorithm>
+
+namespace aavio::config {
+
+Expected<std::optional<pipeline::SceneDepth>> MeasureSceneDepth(io::SequenceReader* reader,
+                                                                const geometry::StereoRig& rig,
+                                                                TimeNs begin_ns, TimeNs end_ns) {
+  pipeline::SceneDepthProbe probe(rig, begin_ns);
+  const TimeNs stop_ns = std::min(end_ns, begin_ns + kMaxProbeNs);
+  std::optional<pipeline::SceneDepth> found;
+  TimeNs next_ns = begin_ns + pipeline::SceneDepthProbe::kWindowNs;
+  io::SensorPacket packet;
+  while (!found && next_ns <= stop_ns) {
+    Expected<bool> more = reader->Next(&packet);
+    if (!more) return more.status();
+    if (*more) {
+      AAVIO_RETURN_IF_ERROR(probe.AddEvents(events::Camera::kLeft, packet.left));
+      AAVIO_RETURN_IF_ERROR(probe.AddEvents(events::Camera::kRight, packet.right));
+    }
+    // Measure at every window's end the packets have reached (all of them once data ends).
+    while (!found && next_ns <= stop_ns && (!*more || packet.t_end_ns >= next_ns)) {
+      Expected<std::optional<pipeline::SceneDepth>> depth = probe.Measure(next_ns);
+      if (!depth) return depth.status();
+      found = *depth;
+      next_ns += pipeline::SceneDepthProbe::kWindowNs;
+    }
+    if (!*more) break;
+  }
+  AAVIO_RETURN_IF_ERROR(reader->Seek(begin_ns));
+  return found;
+}
+
+}  // namespace aavio::config
