@@ -51,6 +51,11 @@ void Scene::Transform(const geometry::RigidTransform& T) {
   Build();
 }
 
+void Scene::ScaleContrast(double factor) {
+  for (Quad& q : quads_)
+    q.texture.contrast *= factor;
+}
+
 void Scene::Build() {
   for (Quad& q : quads_)
     q.texture.Prepare();

@@ -24,8 +24,8 @@ struct Quad {
   Eigen::Vector3d edge_v = Eigen::Vector3d::UnitY();
   Texture texture;
   Eigen::Vector3d velocity_mps = Eigen::Vector3d::Zero();  ///< world frame; 0 = static
-  double flicker_hz = 0.0;     ///< 0 = steady
-  double flicker_depth = 0.0;  ///< in [0, 1)
+  double flicker_hz = 0.0;                                 ///< 0 = steady
+  double flicker_depth = 0.0;                              ///< in [0, 1)
   double flicker_phase_rad = 0.0;
 
   bool moves() const { return !velocity_mps.isZero(); }
@@ -55,13 +55,16 @@ class Scene {
   void Build();
   /// Moves every quad by T_new_old (p_new = T · p_old) and rebuilds the BVH.
   void Transform(const geometry::RigidTransform& T_new_old);
+  /// Every texture's contrast (the spread of its albedos) times `factor`: fainter or bolder
+  /// patterns on the same geometry.
+  void ScaleContrast(double factor);
 
   /// Nearest hit of the ray o + s·dir (dir of unit length, s > 1e-6); false if none. Moving
   /// quads are where they are at the time origin.
   bool Intersect(const Eigen::Vector3d& o, const Eigen::Vector3d& dir, Hit* hit) const;
 
   const std::vector<Quad>& quads() const { return quads_; }
-  double sky_albedo = 0.45;  ///< what rays that hit nothing see
+  double sky_albedo = 0.45;   ///< what rays that hit nothing see
   TimeNs time_origin_ns = 0;  ///< the time moving quads' origins and flicker phases refer to
 
  private:

@@ -222,6 +222,7 @@ Status SimulationRequest::Validate() const {
   }
   check.InRange("speed", speed, 0.05, 10.0);
   check.InRange("rest_at_start_s", rest_at_start_s, 0.0, kDay_s);
+  check.InRange("texture_contrast", texture_contrast, 0.2, 3.0);
   if (length_s && rest_at_start_s > 0.0)
     check.Require(1.5 * rest_at_start_s < *length_s, "rest_at_start_s",
                   "= " + FieldChecker::Num(rest_at_start_s) +
@@ -299,6 +300,7 @@ Expected<SimulationWorld> BuildSimulationWorld(const SimulationRequest& request)
   Scene scene = BuildScene(preset->scene, motion->poses, motion->gravity_world,
                            preset->camera_height_m, request.seed);
   if (preset->scene != SceneKind::kStreet) scene.Transform(T_world_canonical);
+  if (request.texture_contrast != 1.0) scene.ScaleContrast(request.texture_contrast);
   const geometry::CameraIntrinsics& K = rig->left().intrinsics();
   const WorldEffectPlacement placement{motion->poses, motion->gravity_world,
                                        std::atan(0.5 * K.width / K.fx),

@@ -52,6 +52,9 @@ struct SimulationRequest {
   /// The camera stands still for this long from the start, then speeds up into its motion over
   /// half as long (a start at rest: nothing but noise in view until it moves). 0: it is moving.
   double rest_at_start_s = 0.0;
+  /// The scene's texture contrast times this (0.2-3): fainter or bolder patterns, fewer or more
+  /// events, on the same geometry (world effects keep theirs).
+  double texture_contrast = 1.0;
   std::string scene;                    ///< a scene by name (SceneKindNamed); empty: the preset's
   std::string motion;                   ///< a built-in motion by name; empty: the preset's
   std::string trajectory;               ///< TUM file: follow a recorded camera path (a twin)

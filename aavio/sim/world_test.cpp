@@ -5,11 +5,17 @@
 namespace aavio::sim {
 namespace {
 
-SimulationWorld World(std::vector<Disturbance> disturbances) {
+// The mini preset for 3 s with the ideal sensor.
+SimulationRequest MiniRequest() {
   SimulationRequest request;
   request.preset = "mini";
   request.duration_s = 3.0;
   request.sensor = "ideal";
+  return request;
+}
+
+SimulationWorld World(std::vector<Disturbance> disturbances) {
+  SimulationRequest request = MiniRequest();
   request.disturbances = std::move(disturbances);
   Expected<SimulationWorld> world = BuildSimulationWorld(request);
   EXPECT_TRUE(world.ok()) << world.status().message();
@@ -24,10 +30,7 @@ TEST(SimulationWorld, SpeedPlaysTheSamePathFasterOrSlower) {
   const SimulationWorld plain = World({});
   for (double speed : {0.5, 2.0}) {
     SCOPED_TRACE(speed);
-    SimulationRequest request;
-    request.preset = "mini";
-    request.duration_s = 3.0;
-    request.sensor = "ideal";
+    SimulationRequest request = MiniRequest();
     request.speed = speed;
     Expected<SimulationWorld> w = BuildSimulationWorld(request);
     ASSERT_TRUE(w.ok()) << w.status().message();
@@ -118,10 +121,7 @@ TEST(SimulationWorld, AStopBrakesStandsStillAndDrivesOn) {
 
 TEST(SimulationWorld, ARestAtTheStartStandsStillThenSpeedsUpIntoTheMotion) {
   const SimulationWorld plain = World({});
-  SimulationRequest request;
-  request.preset = "mini";
-  request.duration_s = 3.0;
-  request.sensor = "ideal";
+  SimulationRequest request = MiniRequest();
   request.rest_at_start_s = 1.0;
   Expected<SimulationWorld> rest = BuildSimulationWorld(request);
   ASSERT_TRUE(rest.ok()) << rest.status().message();
@@ -144,6 +144,23 @@ TEST(SimulationWorld, ARestAtTheStartStandsStillThenSpeedsUpIntoTheMotion) {
   EXPECT_NE(request.Validate().message().find("rest_at_start_s = 2.5 s leaves the camera no time"),
             std::string::npos)
       << request.Validate().message();
+}
+
+TEST(SimulationWorld, TextureContrastScalesTheScenesPatternsOnly) {
+  const SimulationWorld plain = World({});
+  SimulationRequest request = MiniRequest();
+  request.texture_contrast = 0.5;
+  Expected<SimulationWorld> faint = BuildSimulationWorld(request);
+  ASSERT_TRUE(faint.ok()) << faint.status().message();
+  ASSERT_EQ(faint->scene.quads().size(), plain.scene.quads().size());
+  for (std::size_t i = 0; i < plain.scene.quads().size(); ++i) {
+    const Quad &a = plain.scene.quads()[i], &b = faint->scene.quads()[i];
+    EXPECT_DOUBLE_EQ(b.texture.contrast, 0.5 * a.texture.contrast) << i;
+    EXPECT_EQ(b.texture.mean, a.texture.mean) << i;
+    EXPECT_EQ(b.origin, a.origin) << i;
+  }
+  request.texture_contrast = 5.0;
+  EXPECT_NE(request.Validate().message().find("texture_contrast"), std::string::npos);
 }
 
 TEST(SimulationWorld, AStopPastTheEndIsAClearError) {

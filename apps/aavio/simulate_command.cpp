@@ -158,6 +158,9 @@ void RegisterSimulate(CLI::App& app, Context& ctx) {
   sub->add_option("--speed", request->speed,
                   "The motion played FACTOR times as fast (0.05-10; 0.2: slow, 3: fast)")
       ->check(NumberIn(0.05, 10.0));
+  sub->add_option("--contrast", request->texture_contrast,
+                  "The scene's texture contrast times FACTOR (0.2-3; 0.3: faint, 2: bold)")
+      ->check(NumberIn(0.2, 3.0));
   sub->add_option("--rest", request->rest_at_start_s,
                   "The camera stands still for the first SECONDS, then speeds up into its motion "
                   "over half as long (a start at rest)")
