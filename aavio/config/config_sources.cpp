@@ -60,30 +60,36 @@ std::string ConfigureForRig(const geometry::StereoRig& rig, ConfigSources* sourc
                             const std::optional<pipeline::SceneDepth>& scene) {
   sources->sensor = pipeline::SensorFacts::Of(rig);
   if (!sources->preset.empty()) return "";
-  pipeline::PresetSuggestion suggestion = pipeline::SuggestPreset(*sources->sensor);
-  if (!scene) {
-    sources->preset = suggestion.name;
-    return suggestion.reason;
-  }
-  const std::string seen =
-      StrFormat("the scene %.1f m away: median of %d edges %.1f s into the data",
-                scene->median_depth_m, scene->points, scene->at_s);
-  if (suggestion.name == "driving") {
-    // The driving preset's nearest depth, from the preset itself.
-    ConfigSources driving;
-    driving.preset = suggestion.name;
-    pipeline::OdometryConfig config;
-    const double nearest_m =
-        ApplySources(driving, &config).ok() ? 1.0 / config.mapping.inv_depth_max : 0.0;
-    if (scene->median_depth_m < nearest_m) {
-      sources->preset = "indoor";
-      return StrFormat(
-          "baseline %.2f m is a car's, but %s, nearer than the driving preset's %.0f m",
-          sources->sensor->baseline_m, seen.c_str(), nearest_m);
-    }
-  }
+  const pipeline::PresetSuggestion suggestion = pipeline::SuggestPreset(*sources->sensor);
   sources->preset = suggestion.name;
-  return suggestion.reason + "; " + seen;
+  if (!scene) return suggestion.reason;
+  const std::string seen = StrFormat("median %.1f m of %zu edges %.1f s into the data",
+                                     scene->median_m(), scene->depths_m.size(), scene->at_s);
+  if (suggestion.name != "driving") return suggestion.reason + "; the scene " + seen;
+  // Which preset's depth range holds more of the scene, from the presets themselves.
+  auto range_of = [](const char* preset, double* near_m, double* far_m) {
+    ConfigSources named;
+    named.preset = preset;
+    pipeline::OdometryConfig config;
+    if (!ApplySources(named, &config).ok()) return false;
+    *near_m = 1.0 / config.mapping.inv_depth_max;
+    *far_m = 1.0 / config.mapping.inv_depth_min;
+    return true;
+  };
+  double indoor_near = 0, indoor_far = 0, driving_near = 0, driving_far = 0;
+  if (!range_of("indoor", &indoor_near, &indoor_far) ||
+      !range_of("driving", &driving_near, &driving_far))
+    return suggestion.reason;
+  const double indoor = scene->ShareWithin(indoor_near, indoor_far);
+  const double driving = scene->ShareWithin(driving_near, driving_far);
+  const std::string shares = StrFormat(
+      "%.0f %% of the scene's edges within the indoor preset's %g-%g m, %.0f %% within the "
+      "driving preset's %g-%g m (%s)",
+      100 * indoor, indoor_near, indoor_far, 100 * driving, driving_near, driving_far,
+      seen.c_str());
+  if (indoor <= driving) return suggestion.reason + "; " + shares;
+  sources->preset = "indoor";
+  return StrFormat("baseline %.2f m is a car's, but ", sources->sensor->baseline_m) + shares;
 }
 
 Expected<std::vector<pipeline::SensorSetting>> SensorSettingsOf(const ConfigSources& sources) {

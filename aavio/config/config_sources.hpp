@@ -29,9 +29,10 @@ struct ConfigSources {
 };
 
 /// Makes `sources` configure for `rig`: its sensor's settings and, when no preset is named, the
-/// preset the rig suggests — by its baseline, unless the scene's measured depth (`scene`, from
-/// pipeline::SceneDepthProbe) lies nearer than that preset's depth range reaches. Returns why
-/// that preset ("" when one was named).
+/// preset the rig suggests — by its baseline; a car's baseline is indoor when the scene's
+/// measured depths (`scene`, from pipeline::SceneDepthProbe) fall within the indoor preset's
+/// depth range more than within the driving preset's. Returns why that preset ("" when one was
+/// named).
 std::string ConfigureForRig(const geometry::StereoRig& rig, ConfigSources* sources,
                             const std::optional<pipeline::SceneDepth>& scene = {});
 

@@ -38,24 +38,32 @@ TEST(ConfigSources, AProgramConfiguresForItsRigInTwoCalls) {
   EXPECT_EQ(overridden->mapping.rate_hz, 5.0);
 }
 
-// A car's baseline in a room: the measured scene, nearer than the driving preset reaches,
-// makes it indoor; a street's keeps it driving. Each reason says what was seen.
-TEST(ConfigSources, TheSceneMeasuredNearerThanACarSeesMakesTheRigIndoor) {
+// A car's baseline in a room: the indoor preset's depth range holding more of the measured scene
+// than the driving preset's makes it indoor; a street's keeps it driving. Each reason says what
+// was seen.
+TEST(ConfigSources, AWideRigInARoomIsIndoorByTheDepthsMeasured) {
+  pipeline::SceneDepth near{{1.5, 2.0, 2.4, 3.0, 4.6}, 0.3};  // all within 0.5-5 m, one past 4 m
   ConfigSources room;
-  const std::string why = ConfigureForRig(Rig("dsec"), &room, pipeline::SceneDepth{800, 2.4, 0.3});
+  const std::string why = ConfigureForRig(Rig("dsec"), &room, near);
   EXPECT_EQ(room.preset, "indoor");
-  EXPECT_NE(why.find("baseline 0.60 m is a car's, but the scene 2.4 m away: median of 800 edges "
-                     "0.3 s into the data, nearer than the driving preset's 4 m"),
+  EXPECT_NE(why.find("baseline 0.60 m is a car's, but 100 % of the scene's edges within the "
+                     "indoor preset's 0.5-5 m, 20 % within the driving preset's 4-1000 m "
+                     "(median 2.4 m of 5 edges 0.3 s into the data)"),
             std::string::npos)
       << why;
+  pipeline::SceneDepth far{{3.0, 8.0, 12.0, 20.0, 35.0}, 0.6};
   ConfigSources street;
-  EXPECT_NE(ConfigureForRig(Rig("dsec"), &street, pipeline::SceneDepth{500, 12.0, 0.3})
-                .find("the scene 12.0 m away"),
+  EXPECT_NE(ConfigureForRig(Rig("dsec"), &street, far).find("80 % within the driving"),
             std::string::npos);
   EXPECT_EQ(street.preset, "driving");
-  // A named preset is never second-guessed.
+  // A narrow rig stays indoor whatever it measured (far scenes are no reason for a car's preset);
+  // a named preset is never second-guessed.
+  ConfigSources narrow;
+  EXPECT_NE(ConfigureForRig(Rig("rpg"), &narrow, far).find("the scene median 12.0 m"),
+            std::string::npos);
+  EXPECT_EQ(narrow.preset, "indoor");
   ConfigSources named{.preset = "driving"};
-  EXPECT_EQ(ConfigureForRig(Rig("dsec"), &named, pipeline::SceneDepth{800, 2.4, 0.3}), "");
+  EXPECT_EQ(ConfigureForRig(Rig("dsec"), &named, near), "");
   EXPECT_EQ(named.preset, "driving");
 }
 

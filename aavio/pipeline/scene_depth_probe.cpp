@@ -23,6 +23,13 @@ events::RepresentationBuilder MakeBuilder(const geometry::StereoRig& rig, TimeNs
 
 }  // namespace
 
+double SceneDepth::ShareWithin(double near_m, double far_m) const {
+  if (depths_m.empty()) return 0.0;
+  const auto from = std::lower_bound(depths_m.begin(), depths_m.end(), near_m);
+  const auto to = std::upper_bound(depths_m.begin(), depths_m.end(), far_m);
+  return to > from ? static_cast<double>(to - from) / static_cast<double>(depths_m.size()) : 0.0;
+}
+
 SceneDepthProbe::SceneDepthProbe(const geometry::StereoRig& rig, TimeNs start_ns)
     : rig_(rig), start_ns_(start_ns), builder_(MakeBuilder(rig, start_ns)) {}
 
@@ -66,14 +73,13 @@ Expected<std::optional<SceneDepth>> SceneDepthProbe::Measure(TimeNs t_ns) {
                                 mapping::DepthRefinementConfig{}.student_t_nu, {1e-4, nearest_rho});
   if (!points) return points.status();
   if (static_cast<int>(points->size()) < kMinPoints) return std::optional<SceneDepth>{};
-  std::vector<double> depths;
-  depths.reserve(points->size());
+  SceneDepth scene;
+  scene.depths_m.reserve(points->size());
   for (const mapping::DepthPoint& p : *points)
-    depths.push_back(1.0 / p.rho);
-  auto middle = depths.begin() + static_cast<std::ptrdiff_t>(depths.size() / 2);
-  std::nth_element(depths.begin(), middle, depths.end());
-  return std::optional<SceneDepth>{
-      SceneDepth{static_cast<int>(depths.size()), *middle, NsToSeconds(t_ns - start_ns_)}};
+    scene.depths_m.push_back(1.0 / p.rho);
+  std::sort(scene.depths_m.begin(), scene.depths_m.end());
+  scene.at_s = NsToSeconds(t_ns - start_ns_);
+  return std::optional<SceneDepth>{std::move(scene)};
 }
 
 }  // namespace aavio::pipeline

@@ -6,6 +6,7 @@
 
 #include <optional>
 #include <span>
+#include <vector>
 
 #include "aavio/common/status.hpp"
 #include "aavio/events/event.hpp"
@@ -15,9 +16,12 @@
 namespace aavio::pipeline {
 
 struct SceneDepth {
-  int points = 0;               ///< edges with a depth
-  double median_depth_m = 0.0;  ///< their median depth
-  double at_s = 0.0;            ///< seconds after the probe's start where it was measured
+  std::vector<double> depths_m;  ///< the edges' depths, ascending
+  double at_s = 0.0;             ///< seconds after the probe's start where it was measured
+
+  double median_m() const { return depths_m.empty() ? 0.0 : depths_m[depths_m.size() / 2]; }
+  /// The share of the edges from near_m to far_m.
+  double ShareWithin(double near_m, double far_m) const;
 };
 
 class SceneDepthProbe {
