@@ -7,7 +7,7 @@ find_package(CLI11 REQUIRED)
 find_package(nlohmann_json 3 REQUIRED)
 find_package(Threads REQUIRED)
 find_package(TBB REQUIRED)
-# The serial HDF5 (never hdf5-mpi, which libvtk pulls in on some machines: formats.md §6.1).
+# The serial HDF5 (never hdf5-mpi, which libvtk pulls in on some machines: docs/io.md).
 set(HDF5_PREFER_PARALLEL OFF)
 find_package(HDF5 REQUIRED COMPONENTS C)
 if(HDF5_IS_PARALLEL)

@@ -25,8 +25,8 @@ for arg in "$@"; do
 done
 
 # Build tools (clang and its sanitizer and libFuzzer runtimes for scripts/sanitize.sh and
-# scripts/fuzz.sh), libraries (design.md §3), the Python module's pybind11 and pytest, and the
-# independent fixture writers the tests run with /usr/bin/python3 (formats.md §6).
+# scripts/fuzz.sh), libraries (docs/architecture.md), the Python module's pybind11 and pytest, and the
+# independent fixture writers the tests run with /usr/bin/python3 (docs/io.md).
 packages=(
   build-essential cmake pkgconf git clang-format clang libclang-rt-dev
   libeigen3-dev libopencv-dev libyaml-cpp-dev libcli11-dev nlohmann-json3-dev libtbb-dev

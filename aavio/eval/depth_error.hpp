@@ -1,6 +1,6 @@
 #pragma once
-/// Depth accuracy of a map against ground truth (design.md §6): for every estimated point with
-/// ground truth, |z_est − z_gt| (mean, median) and |Δz| / z_gt (mean relative); completeness =
+/// Depth accuracy of a map against ground truth (docs/evaluation.md): for every estimated point
+/// with ground truth, |z_est − z_gt| (mean, median) and |Δz| / z_gt (mean relative); completeness =
 /// share of ground-truth edge pixels with an estimate within one pixel, overall and split into
 /// near-horizontal edges and the others. Points on a depth discontinuity (a ground-truth depth
 /// within one pixel differs by more than `kDiscontinuityRatio`) are also scored apart, as the
@@ -64,7 +64,7 @@ struct DepthErrorSummary {
   double mean_true_depth_m = 0.0;
   /// |f·b / z_est − f·b / z_gt| [px], mean and median (0 without f·b).
   double disparity_error_px = 0.0, disparity_error_median_px = 0.0;
-  double completeness = 0.0;     ///< share of edge pixels with an estimate (±1 px)
+  double completeness = 0.0;  ///< share of edge pixels with an estimate (±1 px)
   double completeness_horizontal = 0.0;
   double completeness_other = 0.0;
   double block_coverage = 0.0;        ///< share of blocks with structure holding an estimate

@@ -1,5 +1,5 @@
 #pragma once
-/// The adaptive accumulation (AA) map: the paper's Algorithm 1 (algorithm.md §3.2).
+/// The adaptive accumulation (AA) map: the paper's Algorithm 1 (docs/representations.md).
 ///
 /// The image is tiled into a grid of blocks; each block accumulates event counts until it is
 /// "sharp": when the variance of its non-zero counts

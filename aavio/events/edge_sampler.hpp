@@ -1,5 +1,5 @@
 #pragma once
-/// Edge pixels for mapping (algorithm.md §3.4–3.5): a budget of pixels from the AA map, spread
+/// Edge pixels for mapping (docs/representations.md): a budget of pixels from the AA map, spread
 /// over the grid of blocks and favouring high counts — or, as the baseline, ESVO's newest events.
 /// Samples are taken in raw coordinates and rectified once through the event LUT; pixels whose
 /// rectified position is outside the image or the valid mask are never offered.
@@ -20,9 +20,9 @@ struct EdgeSample {
   std::uint16_t count = 0;     ///< AA count (1 for ESVO's events)
 };
 
-/// Per-block quotas (algorithm.md §3.4, [ESVO2]): ¾ of M in proportion to the blocks' candidates
-/// n_i, each block capped at ½·n_i, and what is left of M shared evenly among the blocks with
-/// room, repeatedly, until M is met or every block is at its cap.
+/// Per-block quotas (docs/representations.md, [ESVO2]): ¾ of M in proportion to the blocks'
+/// candidates n_i, each block capped at ½·n_i, and what is left of M shared evenly among the blocks
+/// with room, repeatedly, until M is met or every block is at its cap.
 std::vector<int> BlockQuotas(const std::vector<int>& candidates, const EdgeSamplingConfig& config);
 
 /// Samples the AA map: per block its quota of highest-count pixels, ties broken at random from

@@ -1,5 +1,5 @@
 #pragma once
-/// Configuration of the event representations (algorithm.md §2–3, §10.1). Defaults are the
+/// Configuration of the event representations (docs/representations.md). Defaults are the
 /// paper's / ICRA code's values; the provenance of each is given beside it.
 
 #include <array>
@@ -57,7 +57,7 @@ struct AdaptiveAccumulationConfig {
   Status Validate() const;
 };
 
-/// Where mapping's edge pixels come from (algorithm.md §3.4–3.5).
+/// Where mapping's edge pixels come from (docs/representations.md).
 enum class SamplingMode {
   kAdaptiveAccumulation,  ///< sample the AA map [paper]
   kNewestEvents,          ///< ESVO: the newest events of the last window (baseline)

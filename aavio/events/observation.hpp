@@ -1,6 +1,6 @@
 #pragma once
-/// Everything the representation stage produces at one tick (algorithm.md §9), for tracking and
-/// mapping. Images are rectified unless named raw; types are explicit.
+/// Everything the representation stage produces at one tick (docs/architecture.md), for tracking
+/// and mapping. Images are rectified unless named raw; types are explicit.
 
 #include <opencv2/core/mat.hpp>
 #include <vector>

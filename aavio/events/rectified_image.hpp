@@ -1,6 +1,6 @@
 #pragma once
 /// Moves raw-coordinate images (time surfaces, AA maps) to the rectified plane, once per image
-/// (algorithm.md §1.4, "image content pipeline"): bilinear interpolation at the camera's remap
+/// (docs/conventions.md, "image content pipeline"): bilinear interpolation at the camera's remap
 /// positions, with 7-bit sub-pixel weights (OpenCV's fixed-point remap uses 5), and 0 outside the
 /// sensor (as cv::remap with a constant border; tested against it).
 ///

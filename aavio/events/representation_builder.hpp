@@ -1,5 +1,5 @@
 #pragma once
-/// The representation stage of one stereo event camera (design.md §1): events in, one
+/// The representation stage of one stereo event camera (docs/architecture.md): events in, one
 /// Observation per tick out — time surfaces of both cameras, the negative TS and its gradients,
 /// the AA map and the edge samples. Synchronous and driven by data time only: the same events
 /// and seed give the same Observation, bit for bit.

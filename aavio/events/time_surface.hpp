@@ -1,5 +1,5 @@
 #pragma once
-/// The exponential-decay time surface of one camera, made the fast way (algorithm.md §2.1–2.2):
+/// The exponential-decay time surface of one camera, made the fast way (docs/representations.md):
 /// a dense last-timestamp image updated once per event, and one vectorised pass per tick
 ///   T(x, t) = exp(−(t − t_last(x)) / τ),  stored as round(255 · T) (uint8; never hit → 0).
 /// Everything here is in raw (distorted) sensor coordinates; `RectifiedImages` moves images to the

@@ -1,6 +1,6 @@
 #pragma once
-/// The images derived from a rectified time surface (algorithm.md §2.3): the smoothed TS used by
-/// static stereo, the negative TS that tracking registers against (ESVO's Gaussian form) and its
+/// The images derived from a rectified time surface (docs/representations.md): the smoothed TS used
+/// by static stereo, the negative TS that tracking registers against (ESVO's Gaussian form) and its
 /// Sobel gradients. All CV_8UC1 in, explicit types out.
 
 #include <opencv2/core/mat.hpp>

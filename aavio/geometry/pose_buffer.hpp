@@ -1,6 +1,6 @@
 #pragma once
 /// Time-indexed poses with interpolation: the tracker inserts T_world_cam at every tick, the
-/// mapper queries it at observation stamps (algorithm.md §9).
+/// mapper queries it at observation stamps (docs/architecture.md).
 
 #include <deque>
 

@@ -1,5 +1,5 @@
 #pragma once
-/// Per-camera rectification products (algorithm.md §1.4):
+/// Per-camera rectification products (docs/conventions.md):
 ///   event_lut   raw integer pixel (x, y) → rectified sub-pixel (u, v), for events and samples;
 ///   remap_x/y   rectified pixel → raw sub-pixel, for cv::remap of whole images (bilinear);
 ///   raw_valid   raw pixels whose rectified position is a valid pixel (for events and samples);

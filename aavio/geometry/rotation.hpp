@@ -25,7 +25,7 @@ Eigen::Matrix3d RightJacobianSO3(const Eigen::Vector3d& w);
 /// Its inverse: Log(Exp(w)·Exp(δ)) ≈ w + Jr⁻¹(w) δ. For |w| < π.
 Eigen::Matrix3d InverseRightJacobianSO3(const Eigen::Vector3d& w);
 
-/// Cayley map (algorithm.md §5.3): R(c) = ((1 − cᵀc) I + 2 c cᵀ + 2 [c]x) / (1 + cᵀc).
+/// Cayley map (docs/tracking.md): R(c) = ((1 − cᵀc) I + 2 c cᵀ + 2 [c]x) / (1 + cᵀc).
 /// c = tan(θ/2)·axis, so R(c) ≈ I + 2[c]x near 0; singular at θ = π.
 Eigen::Matrix3d CayleyToRotation(const Eigen::Vector3d& c);
 /// Inverse Cayley map: c = q_vec / q_w. Undefined for θ = π (q_w = 0).

@@ -76,7 +76,7 @@ TEST(Rotation, CayleyRoundTripsAndMatchesQuaternion) {
 }
 
 TEST(Rotation, CayleyDerivativeAtZeroIsTwiceHat) {
-  // algorithm.md §5.3: ∂R/∂c_j at c = 0 equals 2 [e_j]x.
+  // docs/tracking.md: ∂R/∂c_j at c = 0 equals 2 [e_j]x.
   const double h = 1e-6;
   for (int j = 0; j < 3; ++j) {
     const Eigen::Vector3d e = Eigen::Vector3d::Unit(j);

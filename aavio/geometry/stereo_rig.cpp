@@ -90,7 +90,7 @@ Expected<StereoRig> StereoRig::Create(StereoRigParams p, std::vector<std::string
   if (p.T_imu_left) p.T_imu_left->R = Orthonormalize(p.T_imu_left->R);
 
   // T_right_left must agree with the rectification: R_rectR · R_RL · R_rectLᵀ = I and
-  // R_rectR · t_RL = (−b, 0, 0) (formats.md §1.4). Calibration tools write these separately, so
+  // R_rectR · t_RL = (−b, 0, 0) (docs/io.md). Calibration tools write these separately, so
   // small disagreements are common; report them, the rectified geometry (R_rect, P) wins.
   const Eigen::Matrix3d R_check =
       p.R_rect_right_right * p.T_right_left.R * p.R_rect_left_left.transpose();

@@ -1,5 +1,5 @@
 #pragma once
-/// A calibrated, rectified stereo pair of event cameras (algorithm.md §1.3, docs/conventions.md).
+/// A calibrated, rectified stereo pair of event cameras (docs/conventions.md, docs/conventions.md).
 ///
 /// Frames: `left`/`right` are the raw (distorted) cameras; `rect_left`/`rect_right` the rectified
 /// ones, R_rect_left_left maps raw-left coordinates into the rectified-left frame. All 3D maths of
@@ -55,7 +55,7 @@ class StereoRig {
   double cx_left() const { return p_.P_left(0, 2); }
   double cx_right() const { return p_.P_right(0, 2); }
   double cy() const { return p_.P_left(1, 2); }
-  /// b = ‖P_R[:, :3]⁻¹ P_R[:, 3]‖ (algorithm.md §1.3).
+  /// b = ‖P_R[:, :3]⁻¹ P_R[:, 3]‖ (docs/conventions.md).
   double baseline_m() const { return baseline_m_; }
 
   /// Rectified right ← rectified left: a pure translation (−b, 0, 0).

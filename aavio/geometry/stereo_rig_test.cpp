@@ -27,7 +27,7 @@ TEST(StereoRig, DerivesBaselineAndRectifiedGeometry) {
   std::vector<std::string> warnings;
   Expected<StereoRig> rig = StereoRig::Create(RpgParams(), &warnings);
   ASSERT_TRUE(rig.ok()) << rig.status().message();
-  EXPECT_NEAR(rig->baseline_m(), 23.2327 / 156.925, 1e-12);  // algorithm.md §10.5: 0.1481 m
+  EXPECT_NEAR(rig->baseline_m(), 23.2327 / 156.925, 1e-12);  // rpg calibration: 0.1481 m
   EXPECT_DOUBLE_EQ(rig->focal_px(), 156.925);
   EXPECT_NEAR(rig->DisparityAtDepth(1.0), 23.2327, 1e-9);
   EXPECT_TRUE(warnings.empty()) << warnings.front();

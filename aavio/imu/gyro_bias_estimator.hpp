@@ -1,5 +1,5 @@
 #pragma once
-/// The gyroscope bias used by the prior (algorithm.md §5.6), in one of three modes:
+/// The gyroscope bias used by the prior (docs/tracking.md), in one of three modes:
 ///   fixed        — the configured value, never changed (the paper);
 ///   static_init  — the mean reading over the first `static_init_s` of data, accepted only if the
 ///                  readings were still (every axis' standard deviation below

@@ -1,5 +1,5 @@
 #pragma once
-/// Gyroscope pre-integration between two ticks (algorithm.md §5.6): the relative rotation of the
+/// Gyroscope pre-integration between two ticks (docs/tracking.md): the relative rotation of the
 /// IMU from t_begin to t_end by mid-point quaternion integration of (ω̃ − b_g), with the first and
 /// last sample intervals clipped to [t_begin, t_end], and the same rotation expressed in the
 /// camera.

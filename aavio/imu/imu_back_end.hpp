@@ -1,5 +1,5 @@
 #pragma once
-/// The IMU back-end (imu.mode full; algorithm.md §5.8, in the manner of ESVO2's): over a sliding
+/// The IMU back-end (imu.mode full; docs/tracking.md, in the manner of ESVO2's): over a sliding
 /// window of tracked poses, the velocity of each window frame, the gyroscope and accelerometer
 /// biases and the direction of gravity that best explain the IMU pre-integrated between them —
 /// the poses held fixed as measurements, as ESVO2 does. From that state it predicts the full 6-DoF

@@ -1,5 +1,5 @@
 #pragma once
-/// Configuration of the IMU's use (algorithm.md §5.6, §5.8): none, the gyroscope prior of the
+/// Configuration of the IMU's use (docs/tracking.md): none, the gyroscope prior of the
 /// paper, or the full back-end (velocity, biases and gravity estimated; 6-DoF prediction; the
 /// IMU alone through stretches without events). The IMU–camera extrinsic is part of the
 /// calibration (StereoRig::T_imu_left), not of this config.

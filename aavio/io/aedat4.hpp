@@ -1,5 +1,5 @@
 #pragma once
-/// AEDAT 4.0 files (iniVation DV recordings, `.aedat4`; formats.md): `#!AER-DAT4.0\r\n`, an int32
+/// AEDAT 4.0 files (iniVation DV recordings, `.aedat4`; docs/io.md): `#!AER-DAT4.0\r\n`, an int32
 /// size and the IOHeader flatbuffer (compression NONE / LZ4 / LZ4_HIGH / ZSTD / ZSTD_HIGH, the
 /// position of the file's data table, the XML description of each stream: type identifier EVTS,
 /// IMUS, FRME, TRIG, sensor size), then packets — int32 stream id, int32 size, that many bytes

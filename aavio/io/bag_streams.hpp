@@ -1,5 +1,5 @@
 #pragma once
-/// Streams over a ROS1 bag (formats.md §2): events from an EventArray topic (dvs_msgs,
+/// Streams over a ROS1 bag (docs/io.md): events from an EventArray topic (dvs_msgs,
 /// dv_ros_msgs or prophesee_event_msgs, recognised by md5), IMU samples from a sensor_msgs/Imu
 /// topic, ground truth from a geometry_msgs/PoseStamped topic. Events come out in event time, not
 /// bag time, whatever the packet sizes (one-event packets included). Only the chunks that hold

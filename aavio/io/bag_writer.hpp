@@ -1,6 +1,6 @@
 #pragma once
 /// Writes ROS1 bags (v2.0, indexed, chunks uncompressed / lz4 / bz2) that the ROS tools and the
-/// ESVO family read unchanged (design.md §5): dvs_msgs/EventArray in fixed packets (1 ms by
+/// ESVO family read unchanged (docs/simulator.md): dvs_msgs/EventArray in fixed packets (1 ms by
 /// default, stamped at the packet's end, as ESVO's repacking tools do), sensor_msgs/Imu and
 /// geometry_msgs/PoseStamped. Bag time = header stamp.
 

@@ -1,5 +1,5 @@
 #pragma once
-/// Loading a stereo calibration into a StereoRig. Supported layouts (formats.md §1.4, §3):
+/// Loading a stereo calibration into a StereoRig. Supported layouts (docs/io.md):
 ///   ESVO/ESVO2 YAML   a folder with left.yaml + right.yaml (ROS camera_info style plus
 ///                     T_right_left and, for the IMU, T_b_c), or either of the two files;
 ///   DSEC              cam_to_cam.yaml, or a sequence folder holding calibration/cam_to_cam.yaml.

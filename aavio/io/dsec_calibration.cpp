@@ -1,4 +1,4 @@
-// DSEC cam_to_cam.yaml (formats.md §1.4).
+// DSEC cam_to_cam.yaml (docs/io.md).
 #include <cmath>
 #include <cstdio>
 
@@ -135,7 +135,7 @@ Expected<LoadedCalibration> LoadDsecCalibration(const std::string& file) {
                         "with last row [0, 0, 0, 1]");
     }
   }
-  const Eigen::Matrix4d T30 = *T32 * *T21 * *T10;  // cam0 → cam3 (formats.md §1.4)
+  const Eigen::Matrix4d T30 = *T32 * *T21 * *T10;  // cam0 → cam3 (docs/io.md)
 
   Expected<geometry::CameraModel> left = geometry::CameraModel::Create(*cam0);
   if (!left) return left.status().WithContext(file + ": intrinsics.cam0");

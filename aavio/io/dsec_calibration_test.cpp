@@ -47,7 +47,7 @@ TEST_F(DsecCalibrationTest, LoadsAndSatisfiesTheConsistencyRelations) {
   EXPECT_DOUBLE_EQ(rig.left().intrinsics().fx, 556.72);  // cam0
   EXPECT_DOUBLE_EQ(rig.right().intrinsics().fx, 553.2);  // cam3
   EXPECT_DOUBLE_EQ(rig.left().intrinsics().coeffs[0], -0.098);
-  // formats.md §1.4: with T_30 = T_32 T_21 T_10, R_rect3 R_30 R_rect0ᵀ = I and
+  // docs/io.md: with T_30 = T_32 T_21 T_10, R_rect3 R_30 R_rect0ᵀ = I and
   // R_rect3 t_30 = (−B, 0, 0).
   const geometry::RigidTransform& T_30 = rig.T_right_left();
   EXPECT_LT(geometry::LogSO3(rig.R_rect_right_right() * T_30.R * rig.R_rect_left_left().transpose())

@@ -1,5 +1,5 @@
 #pragma once
-/// Streaming reader of DSEC-layout event files (formats.md §1.2): /events/{x,y,p,t} with an int64
+/// Streaming reader of DSEC-layout event files (docs/io.md): /events/{x,y,p,t} with an int64
 /// /t_offset [µs] (scalar or shape (1,); absent in TUM-VIE files, whose t is int64 µs), and
 /// /ms_to_idx for seeking. Any integer dtypes are accepted. Reads blocks with hyperslabs, so
 /// memory stays at one block plus the reorder window whatever the file size.
@@ -43,7 +43,7 @@ class DsecH5EventStream final : public EventStream {
 
 namespace aavio::io {
 
-/// DSEC rectify_map.h5 (formats.md §1.3): /rectify_map float32 (height, width, 2), the rectified
+/// DSEC rectify_map.h5 (docs/io.md): /rectify_map float32 (height, width, 2), the rectified
 /// position of every raw pixel. Returned as CV_32FC2, the layout of RectificationMaps::event_lut.
 Expected<cv::Mat> ReadDsecRectifyMap(const std::string& path);
 

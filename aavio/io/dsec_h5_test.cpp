@@ -42,7 +42,7 @@ TEST_P(DsecH5Variants, ReadsExactlyWhatH5pyWrote) {
   EXPECT_TRUE(got == expected);
 }
 
-// formats.md §6.4: blosc/zstd/bit-shuffle with a large t_offset; t_offset of shape (1,); TUM-VIE
+// docs/io.md: blosc/zstd/bit-shuffle with a large t_offset; t_offset of shape (1,); TUM-VIE
 // style (no t_offset, int64 t, int8 p); uncompressed; no ms_to_idx; a small disorder (reordered).
 INSTANTIATE_TEST_SUITE_P(Fixtures, DsecH5Variants,
                          ::testing::Values("dsec_blosc", "offset_shape1", "tumvie", "uncompressed",

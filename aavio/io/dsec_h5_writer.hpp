@@ -1,5 +1,5 @@
 #pragma once
-/// Writes events in the DSEC events.h5 layout (formats.md §1.2), streaming: /events/{x u2, y u2,
+/// Writes events in the DSEC events.h5 layout (docs/io.md), streaming: /events/{x u2, y u2,
 /// p u1, t u4} relative to an int64 scalar /t_offset [µs], and /ms_to_idx (u8) with
 /// ms_to_idx[ms] = first event with t >= 1000·ms. Datasets are chunked and compressed with blosc
 /// (zstd, bit-shuffle), as the DSEC authors' writers do. Timestamps are stored in µs (rounded).

@@ -1,4 +1,4 @@
-// ESVO/ESVO2 left.yaml + right.yaml (formats.md §3).
+// ESVO/ESVO2 left.yaml + right.yaml (docs/io.md).
 #include <cmath>
 #include <cstdio>
 

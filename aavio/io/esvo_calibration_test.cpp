@@ -33,7 +33,7 @@ TEST(EsvoCalibration, LoadsTheRpgPair) {
   EXPECT_EQ(rig.width(), 240);
   EXPECT_EQ(rig.height(), 180);
   EXPECT_DOUBLE_EQ(rig.focal_px(), 156.925);
-  EXPECT_NEAR(rig.baseline_m(), 0.14805, 1e-5);  // algorithm.md §10.5
+  EXPECT_NEAR(rig.baseline_m(), 0.14805, 1e-5);  // docs/tracking.md
   EXPECT_EQ(rig.left().model(), geometry::DistortionModel::kRadtan);
   EXPECT_DOUBLE_EQ(rig.left().intrinsics().coeffs[0], -0.336733);
   EXPECT_NEAR(rig.T_right_left().t.x(), -0.1479883582369969, 1e-15);

@@ -1,4 +1,4 @@
-// Writing ESVO/ESVO2 left.yaml + right.yaml (formats.md §3), full precision.
+// Writing ESVO/ESVO2 left.yaml + right.yaml (docs/io.md), full precision.
 #include <filesystem>
 
 #include "aavio/common/format.hpp"

@@ -1,5 +1,5 @@
 #pragma once
-/// Prophesee RAW event files (Metavision recordings, `.raw`), EVT 2.0 and EVT 3.0 (formats.md):
+/// Prophesee RAW event files (Metavision recordings, `.raw`), EVT 2.0 and EVT 3.0 (docs/io.md):
 /// an ASCII header of lines starting with `% ` — the encoding (`% evt 3.0` or
 /// `% format EVT3;height=720;width=1280`), the geometry when stated, the camera plugin — then
 /// little-endian words:

@@ -1,5 +1,5 @@
 #pragma once
-/// A reader of the ROS1 bag v2.0 container (formats.md §2.1) with no ROS installation: the index
+/// A reader of the ROS1 bag v2.0 container (docs/io.md) with no ROS installation: the index
 /// (connections and chunk infos at the end of the file) and the chunks, uncompressed, bz2 or lz4
 /// (LZ4 frame format). Messages stay serialized; rosbag_messages.hpp decodes them.
 
@@ -20,7 +20,7 @@ struct Connection {
   std::uint32_t id = 0;
   std::string topic;
   std::string type;    ///< e.g. "dvs_msgs/EventArray"
-  std::string md5sum;  ///< identifies the layout; several type names share one (formats.md §2.3)
+  std::string md5sum;  ///< identifies the layout; several type names share one (docs/io.md)
   std::string message_definition;
 };
 

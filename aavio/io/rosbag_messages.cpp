@@ -177,7 +177,7 @@ void EncodeImu(const imu::ImuSample& s, std::uint32_t seq, const std::string& fr
                std::vector<std::uint8_t>* out) {
   Writer w(out);
   w.Header(seq, s.t_ns, frame_id);
-  // No orientation: by convention orientation_covariance[0] = −1 (formats.md §2.5).
+  // No orientation: by convention orientation_covariance[0] = −1 (docs/io.md).
   for (double q : {0.0, 0.0, 0.0, 1.0})
     w.Put(q);
   for (int i = 0; i < 9; ++i)

@@ -1,5 +1,5 @@
 #pragma once
-/// The ROS1 messages aavio reads and writes, serialized by hand (formats.md §2.2–2.5):
+/// The ROS1 messages aavio reads and writes, serialized by hand (docs/io.md):
 /// dvs_msgs/EventArray (also dv_ros_msgs and prophesee_event_msgs: same layout, same md5),
 /// sensor_msgs/Imu and geometry_msgs/PoseStamped. Little-endian, no padding.
 

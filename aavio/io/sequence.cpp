@@ -203,7 +203,7 @@ Status WriteSequenceYaml(const std::string& path, const SequenceDescription& d) 
   }
   add("ground_truth.depth", rel(d.gt_depth));
   return WriteTextFile(path,
-                       FormatConfigYaml(entries, "aavio sequence description (design.md §4)"));
+                       FormatConfigYaml(entries, "aavio sequence description (keys: docs/io.md)"));
 }
 
 Expected<SequenceDescription> DescribeSequence(const std::string& path,
@@ -218,7 +218,7 @@ Expected<SequenceDescription> DescribeSequence(const std::string& path,
       if (!read) return read.status();
       d = std::move(*read);
     } else if (fs::is_regular_file(p / "events" / "left" / "events.h5", ec)) {
-      // A DSEC sequence folder as published (formats.md §1.1).
+      // A DSEC sequence folder as published (docs/io.md).
       d.origin = path;
       d.name = fs::absolute(p).lexically_normal().filename().string();
       d.left = {SourceFormat::kDsecH5, (p / "events" / "left" / "events.h5").string(), "", {}};

@@ -1,6 +1,6 @@
 #pragma once
 /// A sequence = left and right event sources, an optional IMU, a calibration and optional ground
-/// truth (design.md §4). It is described by a `sequence.yaml`:
+/// truth (docs/cli.md). It is described by a `sequence.yaml`:
 ///
 ///   name: box2_twin
 ///   calibration: calibration            # ESVO folder, left.yaml, or DSEC cam_to_cam.yaml

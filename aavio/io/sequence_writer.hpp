@@ -1,5 +1,5 @@
 #pragma once
-/// Writes a sequence folder (design.md §4) in one of the supported formats, streaming the events:
+/// Writes a sequence folder (docs/cli.md) in one of the supported formats, streaming the events:
 ///   h5   events/{left,right}/events.h5 (DSEC layout), imu.txt, groundtruth.txt
 ///   txt  events/{left,right}/events.txt, imu.txt, groundtruth.txt
 ///   bag  events.bag (/davis/{left,right}/events, /davis/left/imu, /gt/pose) and groundtruth.txt

@@ -1,5 +1,5 @@
 #pragma once
-/// The Event Camera Dataset's text layout (formats.md §4.4), streamed in blocks:
+/// The Event Camera Dataset's text layout (docs/io.md), streamed in blocks:
 ///   events.txt  `t x y p`                 (t in seconds, p 0/1)
 ///   imu.txt     `t ax ay az gx gy gz`     (ECD: accelerometer first, seconds)
 ///               or `t_us gx gy gz ax ay az` (TUM-VIE: gyroscope first, µs)

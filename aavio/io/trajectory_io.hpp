@@ -1,5 +1,5 @@
 #pragma once
-/// TUM trajectory files (formats.md §5.1): `timestamp tx ty tz qx qy qz qw` per line, seconds,
+/// TUM trajectory files (docs/evaluation.md): `timestamp tx ty tz qx qy qz qw` per line, seconds,
 /// T_world_body, Hamilton quaternion with w last. The name rpg_trajectory_evaluation expects for
 /// estimates is stamped_traj_estimate.txt.
 

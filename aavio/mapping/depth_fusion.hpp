@@ -1,6 +1,6 @@
 #pragma once
 /// The FIFO of recent depth batches and their fusion into a fresh depth map at every mapping
-/// cycle (algorithm.md §4.8–4.10). Static and temporal batches have FIFOs of their own and are
+/// cycle (docs/mapping.md). Static and temporal batches have FIFOs of their own and are
 /// both always fused (ESVO2's rpg configuration silently drops temporal results); static batches
 /// first, newest first, then cleaning once the FIFO is full, then temporal batches.
 
@@ -17,7 +17,7 @@ struct DepthBatch {
   std::vector<DepthPoint> points;
 };
 
-/// How a full FIFO's fused map is cleaned (algorithm.md §4.9–4.10).
+/// How a full FIFO's fused map is cleaned (docs/mapping.md).
 struct MapCleaning {
   double max_inv_depth_stddev = 1.0;  ///< depth_refinement's: a fused point's σ_ρ above it goes
   InvDepthRange range;                ///< points outside it go
@@ -37,7 +37,7 @@ class DepthFusion {
 
   /// Cleaning starts: const_frames, max_frames batches; const_points, max_points points.
   bool full() const;
-  /// A fused map is worth publishing (algorithm.md §4.11): const_frames, the FIFO is full;
+  /// A fused map is worth publishing (docs/mapping.md): const_frames, the FIFO is full;
   /// const_points, it holds more than half of max_points.
   bool ready_to_publish() const;
   std::size_t batches() const { return static_.size() + temporal_.size(); }

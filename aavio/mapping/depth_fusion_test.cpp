@@ -113,7 +113,7 @@ TEST(DepthFusion, OnlyOtherBatchesConfirm) {
   EXPECT_EQ(cells(true, true), 9);    // the 3×3 cells of the later batch's estimate at (50, 60)
 }
 
-// Regularisation as algorithm.md §4.10 states it (ESVO's rpg values: 5 px, 8 and 8 neighbours),
+// Regularisation as docs/mapping.md states it (ESVO's rpg values: 5 px, 8 and 8 neighbours),
 // by a plain scan of every cell of the window: the reference the map's own (bitset-indexed,
 // parallel) pass must reproduce exactly.
 std::vector<DepthPoint> RegularizeByScan(const DepthMap& map) {
@@ -191,7 +191,7 @@ TEST(DepthFusion, FifoPoliciesAndPropagation) {
                      {config.depth_refinement.max_inv_depth_stddev, config.inv_depth_range(),
                       config.regularization.enabled});
   for (int k = 0; k < 5; ++k) {
-    // const_frames publishes (algorithm.md §4.11) and cleans once max_frames batches are in.
+    // const_frames publishes (docs/mapping.md) and cleans once max_frames batches are in.
     EXPECT_EQ(fusion.ready_to_publish(), k >= 3) << k;
     EXPECT_EQ(fusion.full(), k >= 3) << k;
     DepthBatch batch{k, {}, {Point(50.0f + k, 60.0f, 0.1, 0.01)}};
@@ -224,7 +224,7 @@ TEST(DepthFusion, FifoPoliciesAndPropagation) {
   EXPECT_LE(by_points.stored_points(), 15u);  // ≤ 1.5 × max_points
 }
 
-// const_points publishes (algorithm.md §4.11) beyond half of max_points static points and cleans
+// const_points publishes (docs/mapping.md) beyond half of max_points static points and cleans
 // from max_points on.
 TEST(DepthFusion, ConstPointsPublishesFromHalfAndCleansWhenFull) {
   const RectifiedStereo stereo = testing::SmallStereo();

@@ -1,5 +1,5 @@
 #pragma once
-/// The semi-dense inverse-depth map of one frame (algorithm.md §4.8): a grid of cells, each
+/// The semi-dense inverse-depth map of one frame (docs/mapping.md): a grid of cells, each
 /// empty or holding one DepthPoint, and the Student-t fusion rules that fill it.
 
 #include <cstdint>
@@ -61,7 +61,7 @@ class DepthMap {
   std::size_t occupied_ = 0;
 };
 
-/// Student-t fusion of two estimates of the same surface (algorithm.md §4.8).
+/// Student-t fusion of two estimates of the same surface (docs/mapping.md).
 DepthPoint FuseStudentT(const DepthPoint& a, const DepthPoint& b);
 bool Compatible(const DepthPoint& a, const DepthPoint& b, double sigmas);
 

@@ -1,5 +1,5 @@
 #pragma once
-/// An inverse-depth estimate with its Student-t uncertainty (algorithm.md §4.5, §4.8).
+/// An inverse-depth estimate with its Student-t uncertainty (docs/mapping.md).
 
 #include <Eigen/Core>
 

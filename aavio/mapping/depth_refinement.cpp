@@ -205,7 +205,7 @@ bool RefineOne(const RefinementInput& in, const Match& m, const RectifiedStereo&
   if (!(rho > 0.001) || jtj <= 0.0) return false;
   const double sigma_t2 = nu / (nu - 2.0) * s2_t;
   const double variance = sigma_t2 / jtj;
-  // Culling (algorithm.md §4.7); temporal residuals are on the AA maps, which may have their own
+  // Culling (docs/mapping.md); temporal residuals are on the AA maps, which may have their own
   // thresholds.
   const bool temporal = m.kind == StereoKind::kTemporal;
   const double max_stddev =

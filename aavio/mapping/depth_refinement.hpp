@@ -1,5 +1,5 @@
 #pragma once
-/// Depth refinement and uncertainty (algorithm.md §4.5): for each match a 1-D Levenberg–Marquardt
+/// Depth refinement and uncertainty (docs/mapping.md): for each match a 1-D Levenberg–Marquardt
 /// on ρ of the Student-t-weighted patch residual — left TS minus right TS at the disparity of ρ
 /// for static matches; current AA minus past AA at the epipolar position of ρ for temporal ones
 /// (the paper's temporal residual on AA maps, as ESVO2 evaluates it). Uncertainty from the

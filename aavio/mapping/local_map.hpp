@@ -17,7 +17,7 @@ struct LocalMap {
   geometry::RigidTransform T_world_ref;       ///< the frame the map was fused in
   std::vector<DepthPoint> points;             ///< in that frame (rectified left pixels, ρ, σ)
   std::vector<Eigen::Vector3d> points_world;  ///< the same points in the world
-  /// A bootstrap map or a full, cleaned FIFO's (algorithm.md §4.9): a depth output. False: a
+  /// A bootstrap map or a full, cleaned FIFO's (docs/mapping.md): a depth output. False: a
   /// map of a FIFO not yet cleaned, of unconfirmed estimates, published only for tracking (as
   /// the reference's const_points rule does, or with fusion.publish_while_filling); depth
   /// evaluation, depth files and the cloud skip it.

@@ -213,7 +213,7 @@ Status Mapper::Update(const PosedObservation& now, const PosedObservation* partn
     return Status::Ok();  // too little to map this cycle; the old map stays published
   }
 
-  // η split (algorithm.md §4.2): |g_u| / |g_v| < η → near-horizontal edge → temporal stereo.
+  // η split (docs/mapping.md): |g_u| / |g_v| < η → near-horizontal edge → temporal stereo.
   const bool temporal = config_.temporal_stereo.enabled;
   report->has_partner = partner != nullptr;
   std::vector<Eigen::Vector2f> static_group, temporal_group, temporal_snapped;

@@ -1,5 +1,5 @@
 #pragma once
-/// One mapping cycle (algorithm.md §4.1): the current observation's edge samples are split by the
+/// One mapping cycle (docs/mapping.md): the current observation's edge samples are split by the
 /// gradient ratio η into a static group (left/right TS matching) and a near-horizontal temporal
 /// group (AA now vs AA of a partner observation), refined, pushed as batches into the fusion
 /// FIFO, and fused into a new map at the current pose, published as an immutable LocalMap.

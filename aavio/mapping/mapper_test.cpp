@@ -65,7 +65,7 @@ TEST(Mapper, MapsAPlaneFromSgmThenCycles) {
   EXPECT_EQ(mapper.local_map(), nullptr);
 }
 
-// As the reference codes (algorithm.md §4.11): the bootstrap map is published, then nothing until
+// As the reference codes (docs/mapping.md): the bootstrap map is published, then nothing until
 // the FIFO is full (max_frames batches, the bootstrap's included) and cleaned; with
 // fusion.publish_while_filling every cycle publishes, the maps before the FIFO is full marked
 // provisional (not confirmed).
@@ -108,7 +108,7 @@ TEST(Mapper, PublishesTheBootstrapThenOnlyFullFifos) {
 // point refined and old enough to survive the first cleanings.
 // A first map: min_points in any scene, or fewer where they cover enough of the edges in view.
 TEST(BootstrapConfig, AcceptsWhatTheSceneOffers) {
-  BootstrapConfig b;  // 500 points, or half the samples and at least 50
+  BootstrapConfig b;                   // 500 points, or half the samples and at least 50
   EXPECT_TRUE(b.Accepts(500, 5000));   // the count, however many samples
   EXPECT_FALSE(b.Accepts(499, 5000));  // neither the count nor half the samples
   EXPECT_TRUE(b.Accepts(82, 107));     // a sparse scene: 77 % of its samples

@@ -1,5 +1,5 @@
 #pragma once
-/// Configuration of mapping (algorithm.md §4, §10.2). Defaults are the paper's / ICRA code's
+/// Configuration of mapping (docs/mapping.md). Defaults are the paper's / ICRA code's
 /// DSEC values; configs/indoor.yaml and configs/driving.yaml are the scene presets, and
 /// pipeline/sensor_settings.hpp derives the camera-dependent ones.
 
@@ -18,7 +18,7 @@ struct InvDepthRange {
   bool Contains(double rho) const { return rho >= min && rho <= max; }
 };
 
-/// Left/right block matching along rectified rows (algorithm.md §4.3), over the disparities
+/// Left/right block matching along rectified rows (docs/mapping.md), over the disparities
 /// the depth range [1/inv_depth_max, 1/inv_depth_min] allows.
 struct StaticStereoConfig {
   double zncc_threshold = 0.1;      ///< θ: accept cost ½(1 − ZNCC) below it ([ICRA], [ESVO])
@@ -51,7 +51,7 @@ struct StaticStereoConfig {
   Status Validate() const;
 };
 
-/// AA-now vs AA-past matching for edges parallel to the baseline (algorithm.md §4.4); the fixed
+/// AA-now vs AA-past matching for edges parallel to the baseline (docs/mapping.md); the fixed
 /// parts are in temporal_stereo.hpp.
 struct TemporalStereoConfig {
   bool enabled = true;
@@ -102,7 +102,7 @@ struct TemporalStereoConfig {
   Status Validate() const;
 };
 
-/// Per-point Student-t refinement and culling (algorithm.md §4.5, §4.7).
+/// Per-point Student-t refinement and culling (docs/mapping.md).
 struct DepthRefinementConfig {
   double student_t_nu = 2.182;        ///< ν of the TS residual ([ESVO2], DSEC all versions)
   double student_t_scale = 17.277;    ///< s of the TS residual [TS levels]
@@ -132,13 +132,13 @@ enum class FusionStrategy {
   kConstPoints,  ///< drop the oldest batches while points > 1.5 × max_points
 };
 
-/// Student-t fusion into the depth grid of the current pose (algorithm.md §4.8–4.9).
+/// Student-t fusion into the depth grid of the current pose (docs/mapping.md).
 struct FusionConfig {
   FusionStrategy strategy = FusionStrategy::kConstFrames;
   int max_frames = 5;      ///< FIFO length in batches ([ESVO] DSEC 5)
   int max_points = 20000;  ///< FIFO size for const_points
   int radius = 1;          ///< 0: 2×2 cells, ≥ 1: 3×3 cells
-  /// Maps are published as the reference codes do (algorithm.md §4.11): the bootstrap map, then
+  /// Maps are published as the reference codes do (docs/mapping.md): the bootstrap map, then
   /// (const_frames) only maps of a full FIFO, which are cleaned, or (const_points) maps of a FIFO
   /// more than half full. True (aavio) also gives tracking the maps fused while the FIFO fills
   /// (every unconfirmed estimate, spread over its cells). Depth outputs and evaluation take only
@@ -170,7 +170,7 @@ struct FusionConfig {
   Status Validate() const;
 };
 
-/// Optional neighbourhood regularisation of the depth grid (algorithm.md §4.10).
+/// Optional neighbourhood regularisation of the depth grid (docs/mapping.md).
 /// [ESVO] rpg: a point is kept when at least 8 of the points within 5 px (and 8 of those within
 /// its 2σ reach) exist.
 struct RegularizationConfig {
@@ -188,7 +188,7 @@ enum class BootstrapMethod {
   kBlockMatching,  ///< the mapping cycle's static stereo (aavio)
 };
 
-/// The bootstrap of the first map (algorithm.md §4.12).
+/// The bootstrap of the first map (docs/mapping.md).
 struct BootstrapConfig {
   /// Accept the initial map with at least this many points ([ESVO], [ICRA]) — or, in a scene with
   /// fewer edges, with a depth at min_coverage of the edge samples in view and at least

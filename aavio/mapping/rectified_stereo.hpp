@@ -1,5 +1,5 @@
 #pragma once
-/// The rectified stereo pair as mapping sees it (algorithm.md §1.3): one focal length f, the left
+/// The rectified stereo pair as mapping sees it (docs/conventions.md): one focal length f, the left
 /// and right principal points, baseline b. A left pixel (u, v) at inverse depth ρ is the 3-D
 /// point p = (u − cx_l, v − cy, f) / (f ρ) in the rectified left camera; it appears in the right
 /// camera at u_R = u − f b ρ − (cx_l − cx_r), same row.

@@ -1,5 +1,5 @@
 #pragma once
-/// The first map (algorithm.md §4.12): semi-global matching (OpenCV StereoSGBM) of the rectified
+/// The first map (docs/mapping.md): semi-global matching (OpenCV StereoSGBM) of the rectified
 /// time-surface pair (block 11, P1 = 8·11², P2 = 32·11², uniqueness ratio 11: the reference
 /// codes'), kept only at the edge samples, each point with σ_ρ = kSgmInvDepthStddev. Accepted
 /// when at least bootstrap.min_points points survive.

@@ -1,6 +1,6 @@
 #pragma once
 /// Static stereo: left/right block matching of time surfaces along rectified rows
-/// (algorithm.md §4.3). For each edge pixel the left patch (15×7) is compared with right patches
+/// (docs/mapping.md). For each edge pixel the left patch (15×7) is compared with right patches
 /// at every disparity of the range the depth range allows, by ½(1 − ZNCC); the best is accepted
 /// below 1.02θ (the reference codes' tolerance).
 

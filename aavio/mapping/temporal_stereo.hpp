@@ -1,5 +1,5 @@
 #pragma once
-/// Temporal stereo (algorithm.md §4.4): an edge pixel of the current AA map is searched in the
+/// Temporal stereo (docs/mapping.md): an edge pixel of the current AA map is searched in the
 /// AA map of an earlier observation (both smoothed with smooth_aa), along the exact epipolar
 /// segment between the projections of the nearest and farthest allowed depth (not the reference
 /// code's fixed −10…70 px), with a wide flat patch (5 rows × 31 columns) suited to edges parallel

@@ -1,6 +1,6 @@
 #pragma once
 /// Zero-mean normalised cross-correlation of image patches, as the cost ½(1 − ZNCC) ∈ [0, 1]
-/// (algorithm.md §4.3). Patches are float images read with row strides.
+/// (docs/mapping.md). Patches are float images read with row strides.
 
 #include <cmath>
 #include <cstddef>

@@ -1,6 +1,6 @@
 #pragma once
-/// Streaming use of the odometry (design.md §1): push each camera's events and the IMU samples
-/// as a driver delivers them — from any thread, in packets of any size — and receive every
+/// Streaming use of the odometry (docs/architecture.md): push each camera's events and the IMU
+/// samples as a driver delivers them — from any thread, in packets of any size — and receive every
 /// tick's pose, and each new local map, through `on_tick`.
 ///
 /// A tick runs once every stream has delivered its data up to the tick's time: a stream's

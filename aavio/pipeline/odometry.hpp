@@ -1,7 +1,8 @@
 #pragma once
-/// The odometry front-end (algorithm.md §6, design.md §1): events and IMU in; a pose every tick,
-/// a local map every mapping cycle, and their timings out. Synchronous and driven by data time
-/// only — the same input and seed give the same output, bit for bit, whatever the machine load.
+/// The odometry front-end (docs/architecture.md, docs/architecture.md): events and IMU in; a pose
+/// every tick, a local map every mapping cycle, and their timings out. Synchronous and driven by
+/// data time only — the same input and seed give the same output, bit for bit, whatever the machine
+/// load.
 ///
 /// At every tick (time_surface.rate_hz): build the Observation; track it against the newest local
 /// map (gyroscope or constant-velocity prediction, time-surface registration). Every

@@ -1,5 +1,5 @@
 #pragma once
-/// The whole system's configuration: one section per module, composed (style.md §4). YAML
+/// The whole system's configuration: one section per module, composed (CONTRIBUTING.md). YAML
 /// sections mirror these names; `aavio config --list` prints every key with its value.
 
 #include <cstdint>

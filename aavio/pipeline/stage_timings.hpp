@@ -1,5 +1,5 @@
 #pragma once
-/// Per-stage wall times of a run, summarised as summary.json reports them (design.md §4):
+/// Per-stage wall times of a run, summarised as summary.json reports them (docs/cli.md):
 /// median and 95th percentile in ms, number of calls, median number of items per call, and the
 /// total (where the wall time of a run went). Memory stays bounded however long the run: the
 /// quantiles come from log histograms, within 0.5 % of the exact ones.

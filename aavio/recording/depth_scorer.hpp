@@ -1,6 +1,6 @@
 #pragma once
-/// Depth maps scored against a sequence's ground-truth depth (design.md §6), as they are made or
-/// as they were written: each map against the ground-truth frame nearest in time (within 25 ms),
+/// Depth maps scored against a sequence's ground-truth depth (docs/evaluation.md), as they are made
+/// or as they were written: each map against the ground-truth frame nearest in time (within 25 ms),
 /// seen from the camera's true pose at that frame, the map placed by the true pose at its own
 /// time — so the score is the map's, not the trajectory's.
 

@@ -21,7 +21,7 @@
 namespace aavio::recording {
 
 struct TrajectoryEvalOptions {
-  eval::Alignment alignment = eval::Alignment::kSe3;  ///< stereo VO: se3 (design.md §6)
+  eval::Alignment alignment = eval::Alignment::kSe3;  ///< stereo VO: se3 (docs/evaluation.md)
   int align_frames = -1;                              ///< align on the first N pairs; −1 all
   double max_dt_s = 0.02;                             ///< association window
   double rpe_step_s = 0.1;                            ///< per-tick RPE (what `aavio run` prints)
@@ -63,7 +63,7 @@ Expected<eval::DepthErrorAccumulator> EvaluateRunDepth(
     const std::string& run_depth_dir, const RunGroundTruth& truth,
     const std::vector<geometry::StampedPose>& gt_poses);
 
-/// The `aavio eval --json` keys of design.md §4.
+/// The `aavio eval --json` keys of docs/cli.md.
 nlohmann::json TrajectoryEvaluationJson(const TrajectoryEvaluation& e);
 nlohmann::json DepthJson(const eval::DepthErrorSummary& s);
 

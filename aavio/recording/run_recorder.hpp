@@ -1,5 +1,5 @@
 #pragma once
-/// What a run leaves in its output folder, whichever way it is driven (design.md §4): the CLI's
+/// What a run leaves in its output folder, whichever way it is driven (docs/cli.md): the CLI's
 /// `aavio run` in each of its modes, and any front end that feeds the odometry live. Fed with the
 /// odometry's ticks (or, when mapping runs on ground-truth poses, with its mapping cycles), it
 /// keeps the trajectory, the per-stage timings and the status counts; writes timings.csv as it

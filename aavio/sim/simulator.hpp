@@ -1,6 +1,6 @@
 #pragma once
 /// `aavio simulate`: a stereo event camera + IMU sequence with exact ground truth, written as a
-/// sequence folder that `aavio info` and the readers understand (design.md §5):
+/// sequence folder that `aavio info` and the readers understand (docs/simulator.md):
 ///   sequence.yaml, calibration/{left,right}.yaml (ESVO style, with T_b_c),
 ///   events/{left,right}/events.h5 (or one events.bag, or events.txt), imu.txt,
 ///   calibration_true/ when the sensor model gives the calibration errors,

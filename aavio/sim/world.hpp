@@ -1,7 +1,7 @@
 #pragma once
 /// What a simulation is made of, before any event is generated: the preset, the stereo rig, the
 /// camera's motion as a C2 spline, and the scene laid out around it. Shared by `aavio simulate`
-/// and by tests and benchmarks that generate events in memory (design.md §5).
+/// and by tests and benchmarks that generate events in memory (docs/simulator.md).
 
 #include <optional>
 #include <string>

@@ -1,5 +1,5 @@
 #pragma once
-/// Time-surface registration (algorithm.md §5.2–5.5): the pose of the current camera relative to
+/// Time-surface registration (docs/tracking.md): the pose of the current camera relative to
 /// the map's reference frame that puts the map points on the dark ridges of the current negative
 /// time surface,
 ///   min_θ Σ_i Huber( N(π(T_cur,ref(θ) p_i)) ),  N = negative TS (bilinear),

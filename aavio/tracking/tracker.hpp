@@ -1,5 +1,5 @@
 #pragma once
-/// Tracking at every tick (algorithm.md §5): predict the pose — rotation from the gyroscope
+/// Tracking at every tick (docs/tracking.md): predict the pose — rotation from the gyroscope
 /// pre-integrated over the tick (or constant angular velocity without IMU), translation by
 /// constant velocity; with imu.mode full, the whole pose from the IMU back-end once it has an
 /// estimate — then register the local map on the negative time surface from it. A tick without
@@ -37,8 +37,8 @@ enum class LostReason {
   kCostGrew,         ///< the registration ended 50 % above its starting cost
   kRotationJump,     ///< corrected the prediction by more than max_correction_deg
   kTranslationJump,  ///< ... or by more than max_correction_m
-  kNoEvents,  ///< under 10 % of the events of recent tracked ticks (darkness, a covered lens, a
-              ///< standstill): not registered; the pose holds, turned by the gyroscope
+  kNoEvents,      ///< under 10 % of the events of recent tracked ticks (darkness, a covered lens, a
+                  ///< standstill): not registered; the pose holds, turned by the gyroscope
   kImuDisagrees,  ///< (set by the odometry) the tracked motion of the last 0.5 s contradicts the
                   ///< accelerometer (imu::InertialCheck): the track diverged; mapping restarts
 };

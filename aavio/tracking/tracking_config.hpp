@@ -1,16 +1,16 @@
 #pragma once
 /// Configuration of tracking: registration of the local map on the negative time surface
-/// (algorithm.md §5, §10.3).
+/// (docs/tracking.md).
 
 #include "aavio/common/config_fields.hpp"
 
 namespace aavio::tracking {
 
 struct TrackingConfig {
-  int max_points = 2000;     ///< map points sampled per registration problem [paper ~2k]
-  int batch_size = 300;      ///< points per LM step (≥ max_points: all points, plain LM)
+  int max_points = 2000;    ///< map points sampled per registration problem [paper ~2k]
+  int batch_size = 300;     ///< points per LM step (≥ max_points: all points, plain LM)
   int min_map_points = 50;  ///< fewer map points than this: no tracking (kNoMap)
-  int max_iterations = 10;   ///< LM steps per tick ([ICRA], [ESVO]; ESVO2 rpg 20)
+  int max_iterations = 10;  ///< LM steps per tick ([ICRA], [ESVO]; ESVO2 rpg 20)
   /// aavio: LM steps on all points after the mini-batches (0 = the reference)
   int polish_iterations = 0;
   double huber_threshold = 50.0;  ///< robust loss threshold [TS levels]
@@ -31,7 +31,7 @@ struct TrackingConfig {
   /// aavio: with the gyroscope prior, the registration also pays weight·‖δ‖² for the rotation δ
   /// [deg] between its estimate and the gyro-predicted rotation — a soft prior in units of the
   /// mean squared robust residual [TS levels² per deg²] (typically 10²–40² per point). 0 = the
-  /// paper: the prediction is only the initial value (algorithm.md §5.2).
+  /// paper: the prediction is only the initial value (docs/tracking.md).
   double gyro_rotation_weight = 0.0;
   /// aavio: the predicted translation (constant velocity) as a soft prior: the registration also
   /// pays weight·‖Δt‖² for its translation Δt [cm] from the prediction, in the same units

@@ -1,5 +1,5 @@
 #pragma once
-/// The `aavio` command line: one file per subcommand (design.md §4). RunCli is the whole program
+/// The `aavio` command line: one file per subcommand (docs/cli.md). RunCli is the whole program
 /// minus process setup, so tests run commands in-process and read what they print.
 
 #include <functional>

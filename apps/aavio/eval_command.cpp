@@ -160,7 +160,7 @@ void RegisterEval(CLI::App& app, Context& ctx) {
                   "RPE sub-trajectory lengths as fractions of the path")
       ->delimiter(',')
       ->check(NumberIn(1e-6, 1.0));
-  sub->add_flag("--json", options->json, "Print JSON (the keys of design.md §4)");
+  sub->add_flag("--json", options->json, "Print JSON (keys: docs/evaluation.md)");
   sub->callback([&ctx, options] {
     ctx.action = [&ctx, options] {
       const bool pair = !options->est.empty() || !options->gt.empty();

@@ -1,7 +1,7 @@
 // `aavio run`: the full odometry, and two modes that isolate one half of it: mapping only
 // (`--gt-poses`: the sequence's ground-truth poses drive mapping, and the maps are scored
-// against its ground-truth depth, design.md §6) and tracking only (`--gt-map`, against maps of
-// the true depth, ground_truth_maps.cpp). Every mode reads the sequence in one loop and leaves
+// against its ground-truth depth, docs/evaluation.md) and tracking only (`--gt-map`, against maps
+// of the true depth, ground_truth_maps.cpp). Every mode reads the sequence in one loop and leaves
 // its outputs through one recording::RunRecorder.
 #include <tbb/global_control.h>
 #include <unistd.h>

@@ -1,4 +1,5 @@
-// `aavio simulate`: a stereo event camera + IMU sequence with exact ground truth (design.md §5).
+// `aavio simulate`: a stereo event camera + IMU sequence with exact ground truth
+// (docs/simulator.md).
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
