@@ -98,6 +98,37 @@ TEST(Cli, InfoDescribesDataFiles) {
   EXPECT_NE(r.err.find("goes back 30.000 ms"), std::string::npos) << r.err;
 }
 
+// A text file is told apart by its columns: events, an IMU or a TUM trajectory; anything else
+// is named with the three forms.
+TEST(Cli, InfoTellsTextFilesApartByTheirColumns) {
+  const auto dir = testing::ScratchDir();
+  testing::WriteFile(dir / "events.txt", "0.001 10 20 1\n0.002 11 20 0\n");
+  testing::WriteFile(dir / "imu.txt", "# t ax ay az gx gy gz\n0.000 0 9.81 0 0.1 0 0\n"
+                                      "0.001 0 9.81 0 0.1 0 0\n0.002 0 9.81 0 0.1 0 0\n");
+  testing::WriteFile(dir / "groundtruth.txt", "# timestamp tx ty tz qx qy qz qw\n"
+                                              "0.0 0 0 0 0 0 0 1\n0.1 0.3 0 0 0 0 0 1\n"
+                                              "0.2 0.3 0.4 0 0 0 0 1\n");
+  testing::WriteFile(dir / "odd.txt", "1 2 3 4 5\n");
+  Result r = RunAavio({"info", (dir / "events.txt").string(), "--json"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["kind"], "events");
+  r = RunAavio({"info", (dir / "imu.txt").string(), "--json"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["kind"], "imu");
+  EXPECT_EQ(j["imu"]["samples"], 3);
+  r = RunAavio({"info", (dir / "groundtruth.txt").string()});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  EXPECT_NE(r.out.find("3 poses at 10.0 Hz, 0.000000000 .. 0.200000000 s, path 0.700 m"),
+            std::string::npos)
+      << r.out;
+  r = RunAavio({"info", (dir / "odd.txt").string()});
+  EXPECT_EQ(r.code, kExitError);
+  EXPECT_NE(r.err.find("odd.txt, line 1: 5 columns, which no text file aavio reads has"),
+            std::string::npos)
+      << r.err;
+}
+
 TEST(Cli, ConvertRoundTripsThroughEveryFormat) {
   const auto dir = testing::ScratchDir();
   testing::WriteFile(dir / "calib" / "left.yaml", testing::kRpgLeftYaml);

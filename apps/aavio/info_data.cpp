@@ -1,14 +1,17 @@
 // `aavio info` on data: an event file (.h5, .txt, .raw), a bag, or a whole sequence.
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <ostream>
 #include <set>
+#include <sstream>
 
 #include "aavio/common/format.hpp"
 #include "aavio/events/event_statistics.hpp"
 #include "aavio/io/bag_streams.hpp"
 #include "aavio/io/calibration.hpp"
 #include "aavio/io/dsec_h5_reader.hpp"
+#include "aavio/io/file_checks.hpp"
 #include "aavio/io/ros2_bag.hpp"
 #include "aavio/io/rosbag_messages.hpp"
 #include "aavio/io/sequence.hpp"
@@ -222,6 +225,59 @@ bool IsRos2BagFolder(const fs::path& p) {
 
 }  // namespace
 
+// What a text file holds, from its first data line's columns: events `t x y p` (4), an IMU
+// `t ax ay az gx gy gz` (7) or a TUM trajectory `t x y z qx qy qz qw` (8).
+enum class TextKind { kEvents, kImu, kTrajectory };
+
+Expected<TextKind> KindOfTextFile(const std::string& path) {
+  AAVIO_RETURN_IF_ERROR(io::CheckRegularFile(path, "text file"));
+  // The first line that is not a comment, within the file's first 64 kB.
+  std::ifstream file(path, std::ios::binary);
+  std::string head(64 * 1024, '\0');
+  file.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(file.gcount()));
+  std::istringstream in(head);
+  std::string line;
+  for (int k = 0; std::getline(in, line); ++k) {
+    std::istringstream fields(line);
+    std::string first;
+    if (!(fields >> first) || first[0] == '#') continue;
+    int columns = 1;
+    for (std::string f; fields >> f;)
+      ++columns;
+    if (columns == 4) return TextKind::kEvents;
+    if (columns == 7) return TextKind::kImu;
+    if (columns == 8) return TextKind::kTrajectory;
+    return InvalidArgument(StrFormat(
+        "%s, line %d: %d columns, which no text file aavio reads has: events 't x y p' (4), an "
+        "IMU 't ax ay az gx gy gz' (7) or a TUM trajectory 't x y z qx qy qz qw' (8)",
+        path.c_str(), k + 1, columns));
+  }
+  return TextKind::kEvents;  // empty: the event reader says so
+}
+
+Status DescribeTrajectory(const std::string& path, nlohmann::json* j, std::string* text) {
+  Expected<std::vector<geometry::StampedPose>> poses = io::ReadTumTrajectory(path);
+  if (!poses) return poses.status();
+  double length_m = 0.0;
+  for (std::size_t i = 1; i < poses->size(); ++i)
+    length_m += ((*poses)[i].T_world_body.t - (*poses)[i - 1].T_world_body.t).norm();
+  const TimeNs first = poses->empty() ? 0 : poses->front().t_ns;
+  const TimeNs last = poses->empty() ? 0 : poses->back().t_ns;
+  const double span_s = NsToSeconds(last - first);
+  (*j)["kind"] = "trajectory";
+  (*j)["trajectory"] = {{"poses", poses->size()},
+                        {"t_first_s", FormatSecondsNs(first)},
+                        {"t_last_s", FormatSecondsNs(last)},
+                        {"rate_hz", span_s > 0 ? (poses->size() - 1) / span_s : 0.0},
+                        {"path_length_m", length_m}};
+  *text += "trajectory  " + path + "\n";
+  *text += StrFormat("  %-16s %zu poses at %.1f Hz, %s .. %s s, path %.3f m\n", "poses",
+                     poses->size(), span_s > 0 ? (poses->size() - 1) / span_s : 0.0,
+                     FormatSecondsNs(first).c_str(), FormatSecondsNs(last).c_str(), length_m);
+  return Status::Ok();
+}
+
 bool LooksLikeData(const std::string& path) {
   std::error_code ec;
   const fs::path p(path);
@@ -265,6 +321,16 @@ Status DescribeData(const std::string& path, bool stats, nlohmann::json* j, std:
     (*j)["kind"] = "events";
     *text += "events  " + path + "\n";
     return DescribeEvents("events", {io::SourceFormat::kDsecH5, path, "", {}}, {}, stats, j, text);
+  }
+  if (ext == ".txt") {
+    Expected<TextKind> kind = KindOfTextFile(path);
+    if (!kind) return kind.status();
+    if (*kind == TextKind::kImu) {
+      (*j)["kind"] = "imu";
+      *text += "imu  " + path + "\n";
+      return DescribeImu({io::SourceFormat::kText, path, "", {}}, {}, j, text);
+    }
+    if (*kind == TextKind::kTrajectory) return DescribeTrajectory(path, j, text);
   }
   if (ext == ".txt" || ext == ".raw") {
     (*j)["kind"] = "events";

@@ -3,6 +3,7 @@ sequence and on arrays (the same trajectory as `aavio run`, bit for bit), evalua
 outputs, and clear errors for bad input."""
 import os
 import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -121,3 +122,14 @@ def test_bad_input_raises_with_the_fix(twin, tmp_path):
         aavio.evaluate(None, None)
     with pytest.raises(ValueError, match="is a device, not a file"):
         aavio.read_trajectory("/dev/zero")
+
+
+def test_without_numpy_the_import_error_names_it():
+    # numpy made unimportable in a fresh interpreter: the error says what is missing and how to
+    # install it, instead of pybind11's "initialization failed".
+    code = "import sys; sys.modules['numpy'] = None; import aavio"
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                       env=dict(os.environ))
+    assert r.returncode != 0
+    assert "aavio needs numpy, which this Python (" in r.stderr, r.stderr
+    assert "pip install numpy" in r.stderr and "python3-numpy" in r.stderr, r.stderr
