@@ -9,39 +9,16 @@
 
 #include "aavio/common/format.hpp"
 #include "aavio/io/file_checks.hpp"
+#include "aavio/io/text_fields.hpp"
 
 namespace aavio::io {
 
 namespace {
 
-bool IsSeparator(char c) {
-  return c == ' ' || c == '\t' || c == ',' || c == '\r';
-}
-
-/// Splits a line into at most N fields; returns the number of fields found.
-template <std::size_t N>
-std::size_t SplitFields(std::string_view line, std::array<std::string_view, N>* fields) {
-  std::size_t count = 0;
-  std::size_t i = 0;
-  while (i < line.size()) {
-    while (i < line.size() && IsSeparator(line[i]))
-      ++i;
-    if (i == line.size()) break;
-    std::size_t j = i;
-    while (j < line.size() && !IsSeparator(line[j]))
-      ++j;
-    if (count < N) (*fields)[count] = line.substr(i, j - i);
-    ++count;
-    i = j;
-  }
-  return count;
-}
-
-template <typename T>
-bool ParseNumber(std::string_view text, T* value) {
-  auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), *value);
-  return ec == std::errc() && ptr == text.data() + text.size();
-}
+using text::IsSeparator;
+using text::IsSkipped;
+using text::ParseNumber;
+using text::SplitFields;
 
 /// Reads a text file line by line in large blocks; remembers line numbers.
 class LineReader {
@@ -120,13 +97,6 @@ class LineReader {
   std::size_t line_ = 0;
   bool eof_ = false;
 };
-
-bool IsSkipped(std::string_view line) {
-  std::size_t i = 0;
-  while (i < line.size() && IsSeparator(line[i]))
-    ++i;
-  return i == line.size() || line[i] == '#';
-}
 
 Status ParseEventLine(std::string_view line, const std::string& where, const StreamOptions& options,
                       events::Event* e) {

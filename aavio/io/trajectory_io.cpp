@@ -1,5 +1,6 @@
 #include "aavio/io/trajectory_io.hpp"
 
+#include <algorithm>
 #include <array>
 #include <charconv>
 #include <cmath>
@@ -8,19 +9,98 @@
 
 #include "aavio/io/config_yaml.hpp"
 #include "aavio/io/file_checks.hpp"
+#include "aavio/io/text_fields.hpp"
 
 namespace aavio::io {
 
+const char* TrajectoryFormatName(TrajectoryFormat format) {
+  switch (format) {
+    case TrajectoryFormat::kAuto:
+      return "auto";
+    case TrajectoryFormat::kTum:
+      return "tum";
+    case TrajectoryFormat::kTumNs:
+      return "tum_ns";
+    case TrajectoryFormat::kEuroc:
+      return "euroc";
+  }
+  return "?";
+}
+
+Expected<TrajectoryFormat> TrajectoryFormatNamed(const std::string& name) {
+  for (TrajectoryFormat f : {TrajectoryFormat::kAuto, TrajectoryFormat::kTum,
+                             TrajectoryFormat::kTumNs, TrajectoryFormat::kEuroc}) {
+    if (name == TrajectoryFormatName(f)) return f;
+  }
+  return InvalidArgument("trajectory format '" + name +
+                         "' is none of auto, tum (seconds), tum_ns (nanosecond stamps), euroc");
+}
+
 namespace {
 
-bool IsSeparator(char c) {
-  return c == ' ' || c == '\t' || c == ',' || c == '\r';
+using text::IsSkipped;
+using text::ParseNumber;
+using text::SplitFields;
+
+bool IsInteger(std::string_view f) {
+  return !f.empty() && f.find_first_not_of("0123456789") == std::string_view::npos;
+}
+
+// The layout of a trajectory's text, told from its header and data (TrajectoryFormat::kAuto).
+Expected<TrajectoryFormat> DetectFormat(const std::string& text, const std::string& origin) {
+  std::size_t begin = 0;
+  bool euroc_header = false;
+  std::vector<std::string_view> stamps;
+  while (begin < text.size() && stamps.size() < 50) {
+    std::size_t end = text.find('\n', begin);
+    if (end == std::string::npos) end = text.size();
+    const std::string_view line(text.data() + begin, end - begin);
+    begin = end + 1;
+    if (IsSkipped(line)) {
+      euroc_header = euroc_header || line.find("q_RS_w") != std::string_view::npos ||
+                     line.find("[ns]") != std::string_view::npos;
+      continue;
+    }
+    std::array<std::string_view, 20> f;
+    const std::size_t n = SplitFields(line, &f);
+    if (stamps.empty() && n == 12) {
+      return InvalidArgument(origin +
+                             ": 12 columns, a KITTI pose file: it has no timestamps to pair "
+                             "poses by; give a TUM or EuRoC file (t, position, quaternion)");
+    }
+    if (stamps.empty() && (euroc_header || n >= 11)) return TrajectoryFormat::kEuroc;
+    stamps.push_back(f[0]);
+  }
+  // Nanosecond stamps: integers, and either epoch-sized (from 10^12) or steps of 1000 and more
+  // (no trajectory is sampled once every 1000 s).
+  const bool integers = !stamps.empty() && std::all_of(stamps.begin(), stamps.end(), IsInteger);
+  if (!integers) return TrajectoryFormat::kTum;
+  auto value = [](std::string_view f) {
+    long long v = 0;
+    std::from_chars(f.data(), f.data() + f.size(), v);
+    return v;
+  };
+  bool ns = value(stamps.front()) >= 1'000'000'000'000LL;
+  for (std::size_t i = 1; i < stamps.size(); ++i)
+    ns = ns || value(stamps[i]) - value(stamps[i - 1]) >= 1000;
+  return ns ? TrajectoryFormat::kTumNs : TrajectoryFormat::kTum;
 }
 
 }  // namespace
 
-Expected<std::vector<geometry::StampedPose>> ParseTumTrajectory(const std::string& text,
-                                                                const std::string& origin) {
+Expected<std::vector<geometry::StampedPose>> ParseTrajectory(const std::string& text,
+                                                             const std::string& origin,
+                                                             TrajectoryFormat format) {
+  if (format == TrajectoryFormat::kAuto) {
+    Expected<TrajectoryFormat> detected = DetectFormat(text, origin);
+    if (!detected) return detected.status();
+    format = *detected;
+  }
+  // Columns: TUM t x y z qx qy qz qw; EuRoC t[ns] x y z qw qx qy qz (and more after).
+  const bool euroc = format == TrajectoryFormat::kEuroc;
+  const bool ns_stamps = euroc || format == TrajectoryFormat::kTumNs;
+  const char* layout = euroc ? "'timestamp[ns], x, y, z, qw, qx, qy, qz' (EuRoC)"
+                             : "'timestamp tx ty tz qx qy qz qw' (TUM)";
   std::vector<geometry::StampedPose> poses;
   std::size_t line_number = 0;
   std::size_t previous_line = 0;
@@ -31,60 +111,56 @@ Expected<std::vector<geometry::StampedPose>> ParseTumTrajectory(const std::strin
     const std::string_view line(text.data() + begin, end - begin);
     begin = end + 1;
     ++line_number;
+    if (IsSkipped(line)) continue;
     const std::string where = origin + ":" + std::to_string(line_number);
-
-    std::size_t i = 0;
-    while (i < line.size() && IsSeparator(line[i]))
-      ++i;
-    if (i == line.size() || line[i] == '#') continue;
-
     std::array<std::string_view, 8> fields;
-    std::size_t count = 0;
-    while (i < line.size()) {
-      std::size_t j = i;
-      while (j < line.size() && !IsSeparator(line[j]))
-        ++j;
-      if (count < fields.size()) fields[count] = line.substr(i, j - i);
-      ++count;
-      i = j;
-      while (i < line.size() && IsSeparator(line[i]))
-        ++i;
+    const std::size_t count = SplitFields(line, &fields);
+    if (euroc ? count < 8 : count != 8) {
+      return ParseError(where + ": expected " + (euroc ? "at least " : "") + "8 columns " + layout +
+                        ", found " + std::to_string(count) + ": '" + PrintableExcerpt(line) + "'");
     }
-    if (count != 8) {
-      return ParseError(where + ": expected 8 columns 'timestamp tx ty tz qx qy qz qw', found " +
-                        std::to_string(count) + ": '" + PrintableExcerpt(line) + "'");
+    TimeNs t_ns = 0;
+    if (ns_stamps) {
+      const std::string_view f = fields[0];
+      if (!ParseNumber(f, &t_ns) || t_ns < 0) {
+        return ParseError(where + ": timestamp '" + PrintableExcerpt(f, 40) +
+                          "' is not a whole number of nanoseconds" +
+                          (euroc ? "" : "; for stamps in seconds use --format tum"));
+      }
+    } else {
+      Expected<TimeNs> t = ParseSecondsToNs(fields[0]);
+      if (!t) return ParseError(where + ": " + t.status().message());
+      t_ns = *t;
     }
-    Expected<TimeNs> t_ns = ParseSecondsToNs(fields[0]);
-    if (!t_ns) return ParseError(where + ": " + t_ns.status().message());
     std::array<double, 7> v{};
     for (std::size_t k = 0; k < 7; ++k) {
       const std::string_view f = fields[k + 1];
-      auto [ptr, ec] = std::from_chars(f.data(), f.data() + f.size(), v[k]);
-      if (ec != std::errc() || ptr != f.data() + f.size() || !std::isfinite(v[k])) {
-        static constexpr std::array<const char*, 7> kNames = {"tx", "ty", "tz", "qx",
-                                                              "qy", "qz", "qw"};
-        return ParseError(where + ": " + kNames[k] + " = '" + PrintableExcerpt(f, 40) +
-                          "' is not a finite number");
+      if (!ParseNumber(f, &v[k]) || !std::isfinite(v[k])) {
+        static constexpr std::array<const char*, 7> kTum = {"tx", "ty", "tz", "qx",
+                                                            "qy", "qz", "qw"};
+        static constexpr std::array<const char*, 7> kEuroc = {"x",  "y",  "z", "qw",
+                                                              "qx", "qy", "qz"};
+        return ParseError(where + ": " + (euroc ? kEuroc : kTum)[k] + " = '" +
+                          PrintableExcerpt(f, 40) + "' is not a finite number");
       }
     }
-    const Eigen::Quaterniond q(v[6], v[3], v[4], v[5]);
+    const Eigen::Quaterniond q = euroc ? Eigen::Quaterniond(v[3], v[4], v[5], v[6])
+                                       : Eigen::Quaterniond(v[6], v[3], v[4], v[5]);
     const double norm = q.norm();
     if (!(std::abs(norm - 1.0) <= 0.01)) {
-      char message[160];
+      char message[200];
       std::snprintf(message, sizeof(message),
-                    ": quaternion (qx qy qz qw) has norm %.6g, not 1; is the column order "
-                    "'timestamp tx ty tz qx qy qz qw'?",
-                    norm);
+                    ": the quaternion has norm %.6g, not 1; is the column order %s?", norm, layout);
       return ParseError(where + message);
     }
-    if (!poses.empty() && *t_ns <= poses.back().t_ns) {
+    if (!poses.empty() && t_ns <= poses.back().t_ns) {
       return ParseError(where + ": timestamp " + std::string(fields[0]) +
-                        (*t_ns == poses.back().t_ns ? " repeats" : " is before") +
+                        (t_ns == poses.back().t_ns ? " repeats" : " is before") +
                         " the one on line " + std::to_string(previous_line) +
                         "; stamps must increase (sort the file and drop duplicates)");
     }
     geometry::StampedPose pose;
-    pose.t_ns = *t_ns;
+    pose.t_ns = t_ns;
     pose.T_world_body = {q.normalized().toRotationMatrix(), Eigen::Vector3d(v[0], v[1], v[2])};
     poses.push_back(pose);
     previous_line = line_number;
@@ -92,10 +168,20 @@ Expected<std::vector<geometry::StampedPose>> ParseTumTrajectory(const std::strin
   return poses;
 }
 
-Expected<std::vector<geometry::StampedPose>> ReadTumTrajectory(const std::string& path) {
+Expected<std::vector<geometry::StampedPose>> ParseTumTrajectory(const std::string& text,
+                                                                const std::string& origin) {
+  return ParseTrajectory(text, origin, TrajectoryFormat::kTum);
+}
+
+Expected<std::vector<geometry::StampedPose>> ReadTrajectory(const std::string& path,
+                                                            TrajectoryFormat format) {
   Expected<std::string> text = ReadBoundedFile(path, kMaxTrajectoryFileBytes, "trajectory file");
   if (!text) return text.status();
-  return ParseTumTrajectory(*text, path);
+  return ParseTrajectory(*text, path, format);
+}
+
+Expected<std::vector<geometry::StampedPose>> ReadTumTrajectory(const std::string& path) {
+  return ReadTrajectory(path, TrajectoryFormat::kTum);
 }
 
 std::string FormatTumPose(const geometry::StampedPose& pose) {

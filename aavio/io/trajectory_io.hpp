@@ -19,6 +19,24 @@ Expected<std::vector<geometry::StampedPose>> ReadTumTrajectory(const std::string
 Expected<std::vector<geometry::StampedPose>> ParseTumTrajectory(const std::string& text,
                                                                 const std::string& origin);
 
+/// Trajectory text layouts aavio reads. TUM: `t tx ty tz qx qy qz qw`, t in seconds (kTum) or
+/// whole nanoseconds (kTumNs); EuRoC CSV: `t[ns], x, y, z, qw, qx, qy, qz[, ...]` (w first; the
+/// state_groundtruth_estimate0 files' velocity and bias columns after it are ignored). kAuto
+/// tells them apart from the data: a `[ns]` or `q_RS_w` header line, or 11 and more columns, is
+/// EuRoC; integer stamps that are epoch-sized (from 10^12) or step by 1000 and more are
+/// nanoseconds. KITTI's 12-column files have no timestamps and are refused by name.
+enum class TrajectoryFormat { kAuto, kTum, kTumNs, kEuroc };
+const char* TrajectoryFormatName(TrajectoryFormat format);
+Expected<TrajectoryFormat> TrajectoryFormatNamed(const std::string& name);
+
+/// Reads a trajectory of `format` (the TUM reader's rules: exact stamps, quaternions within 1 %
+/// of unit norm, strictly increasing stamps, "file:line: what; fix" errors).
+Expected<std::vector<geometry::StampedPose>> ReadTrajectory(const std::string& path,
+                                                            TrajectoryFormat format);
+Expected<std::vector<geometry::StampedPose>> ParseTrajectory(const std::string& text,
+                                                             const std::string& origin,
+                                                             TrajectoryFormat format);
+
 /// Writes (truncating) with a `# timestamp tx ty tz qx qy qz qw` header, 9-decimal seconds and
 /// 9-decimal pose values, single spaces.
 Status WriteTumTrajectory(const std::string& path, const std::vector<geometry::StampedPose>& poses);

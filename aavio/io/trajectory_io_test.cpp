@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "tests/test_utils.hpp"
 
 namespace aavio::io {
@@ -58,7 +60,7 @@ TEST(TumTrajectory, MalformedLinesGiveFileAndLine) {
       {"1 0 0 0 0 0 0 1\n2 0 0 0 0 0 1\n", "t.txt:2: expected 8 columns"},
       {"1 0 0 0 0 0 0 1\nabc 0 0 0 0 0 0 1\n", "t.txt:2: 'abc' is not a time in seconds"},
       {"1 0 0 x 0 0 0 1\n", "t.txt:1: tz = 'x' is not a finite number"},
-      {"1 0 0 0 0 0 0 2\n", "t.txt:1: quaternion (qx qy qz qw) has norm 2"},
+      {"1 0 0 0 0 0 0 2\n", "t.txt:1: the quaternion has norm 2"},
       {"# c\n2 0 0 0 0 0 0 1\n1 0 0 0 0 0 0 1\n",
        "t.txt:3: timestamp 1 is before the one on line 2"},
       {"1 0 0 0 0 0 0 1\n1.0 0 0 0 0 0 0 1\n", "t.txt:2: timestamp 1.0 repeats"},
@@ -72,6 +74,64 @@ TEST(TumTrajectory, MalformedLinesGiveFileAndLine) {
   }
   EXPECT_EQ(ReadTumTrajectory("/nonexistent.txt").status().code(), StatusCode::kNotFound);
   EXPECT_TRUE(ParseTumTrajectory("# only a comment\n", "t.txt")->empty());
+}
+
+// The same two poses in each layout a user brings, read with the format told from the data.
+TEST(Trajectory, FormatsAreToldApartFromTheData) {
+  // At 1.5 s and 1.6 s (from an epoch of 1 700 000 000 s where stamps are absolute): x 1 -> 2,
+  // turned 90 degrees about z at the second.
+  const double h = std::sqrt(0.5);
+  struct Case {
+    std::string text;
+    TrajectoryFormat format;
+    TimeNs t0_ns;
+  };
+  const std::vector<Case> cases = {
+      {"# timestamp tx ty tz qx qy qz qw\n1.5 1 0 0 0 0 0 1\n1.6 2 0 0 0 0 " + std::to_string(h) +
+           " " + std::to_string(h) + "\n",
+       TrajectoryFormat::kTum, 1'500'000'000},
+      {"1500000000 1 0 0 0 0 0 1\n1600000000 2 0 0 0 0 " + std::to_string(h) + " " +
+           std::to_string(h) + "\n",
+       TrajectoryFormat::kTumNs, 1'500'000'000},
+      {"1700000001500000000 1 0 0 0 0 0 1\n1700000001600000000 2 0 0 0 0 " + std::to_string(h) +
+           " " + std::to_string(h) + "\n",
+       TrajectoryFormat::kTumNs, 1'700'000'001'500'000'000},
+      {"#timestamp [ns],p_RS_R_x [m],p_RS_R_y [m],p_RS_R_z [m],q_RS_w [],q_RS_x [],q_RS_y [],"
+       "q_RS_z []\n1500000000,1,0,0,1,0,0,0\n1600000000,2,0,0," +
+           std::to_string(h) + ",0,0," + std::to_string(h) + "\n",
+       TrajectoryFormat::kEuroc, 1'500'000'000},
+      // EuRoC's state estimate: velocity and biases after the pose, no header.
+      {"1500000000,1,0,0,1,0,0,0,0.1,0,0,0,0,0,0,0,0\n1600000000,2,0,0," + std::to_string(h) +
+           ",0,0," + std::to_string(h) + ",0.1,0,0,0,0,0,0,0,0\n",
+       TrajectoryFormat::kEuroc, 1'500'000'000},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.text);
+    Expected<std::vector<geometry::StampedPose>> auto_read =
+        ParseTrajectory(c.text, "t.txt", TrajectoryFormat::kAuto);
+    ASSERT_TRUE(auto_read.ok()) << auto_read.status().message();
+    Expected<std::vector<geometry::StampedPose>> forced =
+        ParseTrajectory(c.text, "t.txt", c.format);
+    ASSERT_TRUE(forced.ok()) << forced.status().message();
+    ASSERT_EQ(auto_read->size(), 2u);
+    EXPECT_EQ((*auto_read)[0].t_ns, c.t0_ns);
+    EXPECT_EQ((*auto_read)[1].t_ns - (*auto_read)[0].t_ns, 100'000'000);
+    EXPECT_NEAR((*auto_read)[1].T_world_body.t.x(), 2.0, 1e-12);
+    EXPECT_NEAR(geometry::RotationDistance(
+                    (*auto_read)[1].T_world_body.R,
+                    Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix()),
+                0.0, 1e-5);
+    EXPECT_EQ((*forced)[1].t_ns, (*auto_read)[1].t_ns);
+  }
+  // KITTI has no stamps; a name that is no format is said with the list.
+  const Status kitti =
+      ParseTrajectory("1 0 0 0 0 1 0 0 0 0 1 0\n", "k.txt", TrajectoryFormat::kAuto).status();
+  EXPECT_NE(kitti.message().find("k.txt: 12 columns, a KITTI pose file: it has no timestamps"),
+            std::string::npos)
+      << kitti.message();
+  EXPECT_NE(TrajectoryFormatNamed("kitti").status().message().find("none of auto, tum"),
+            std::string::npos);
+  EXPECT_EQ(*TrajectoryFormatNamed("euroc"), TrajectoryFormat::kEuroc);
 }
 
 }  // namespace

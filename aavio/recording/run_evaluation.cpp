@@ -33,6 +33,32 @@ std::string DepthCutoffLine(const eval::DepthErrorSummary& s) {
       cut.c_str(), rel.c_str(), comp.c_str(), horizontal.c_str());
 }
 
+// The estimated poses inside the ground truth's coverage: between two of its poses no further
+// apart than 10 of its median intervals (motion capture that drops out leaves gaps).
+std::size_t PosesWhereGroundTruthIs(const std::vector<geometry::StampedPose>& estimate,
+                                    const std::vector<geometry::StampedPose>& ground_truth) {
+  std::vector<TimeNs> steps;
+  for (std::size_t i = 1; i < ground_truth.size(); ++i)
+    steps.push_back(ground_truth[i].t_ns - ground_truth[i - 1].t_ns);
+  if (steps.empty()) return 0;
+  std::nth_element(steps.begin(), steps.begin() + steps.size() / 2, steps.end());
+  const TimeNs max_gap_ns = 10 * steps[steps.size() / 2];
+  std::size_t covered = 0;
+  for (const geometry::StampedPose& p : estimate) {
+    auto after =
+        std::lower_bound(ground_truth.begin(), ground_truth.end(), p.t_ns,
+                         [](const geometry::StampedPose& g, TimeNs t) { return g.t_ns < t; });
+    if (after == ground_truth.end()) continue;
+    if (after->t_ns == p.t_ns) {
+      ++covered;
+      continue;
+    }
+    if (after == ground_truth.begin()) continue;
+    if (after->t_ns - std::prev(after)->t_ns <= max_gap_ns) ++covered;
+  }
+  return covered;
+}
+
 }  // namespace
 
 Expected<TrajectoryEvaluation> EvaluateTrajectories(
@@ -52,9 +78,19 @@ Expected<TrajectoryEvaluation> EvaluateTrajectories(
   if (pairs->size() < kMinPosePairs) {
     return InvalidArgument(StrFormat(
         "only %zu estimated pose(s) have a ground-truth pose within %g ms: a trajectory score "
-        "needs at least %zu (an alignment fits 3 positions), so none is given (is the estimate "
-        "this short, or do the two trajectories barely overlap in time?)",
+        "needs at least %zu, so none is given (is the estimate this short, do the two "
+        "trajectories barely overlap in time, or are their stamps in different units?)",
         pairs->size(), options.max_dt_s * 1e3, kMinPosePairs));
+  }
+  const std::size_t covered = PosesWhereGroundTruthIs(estimate, ground_truth);
+  if (static_cast<double>(pairs->size()) < kMinMatchedShare * static_cast<double>(covered)) {
+    return InvalidArgument(StrFormat(
+        "only %zu of the %zu estimated poses where the ground truth has poses found one within "
+        "%g ms (%.0f %%, under %.0f %%): the stamps do not line up, so no score is given (are "
+        "both on the same clock and in the same unit? see --format and --max-dt)",
+        pairs->size(), covered, options.max_dt_s * 1e3,
+        100.0 * static_cast<double>(pairs->size()) / static_cast<double>(covered),
+        100.0 * kMinMatchedShare));
   }
   e.pairs = std::move(*pairs);
   for (std::size_t i = 1; i < ground_truth.size(); ++i)

@@ -36,8 +36,11 @@ struct TrajectoryEvaluation {
   eval::RelativeError relative;
 };
 
-/// Fewer pose pairs make no trajectory score: the alignment needs 3 positions.
-inline constexpr std::size_t kMinPosePairs = 3;
+/// Fewer pose pairs make no trajectory score; nor does matching under kMinMatchedShare of the
+/// estimated poses that lie where the ground truth has poses (its span, without its gaps of
+/// over 10 of its median intervals): a stamp unit or clock mix-up matches a few poses by chance.
+inline constexpr std::size_t kMinPosePairs = 10;
+inline constexpr double kMinMatchedShare = 0.5;
 
 Expected<TrajectoryEvaluation> EvaluateTrajectories(
     const std::vector<geometry::StampedPose>& estimate,

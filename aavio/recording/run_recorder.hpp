@@ -68,7 +68,7 @@ struct RunRecord {
   double data_s = 0.0, wall_s = 0.0;
   std::optional<TrajectoryEvaluation> accuracy;
   /// Why there is no accuracy although the sequence has a ground truth (summary.json
-  /// "accuracy_error"): e.g. fewer than 3 poses to score.
+  /// "accuracy_error"): e.g. fewer than 10 poses to score.
   Status accuracy_error = Status::Ok();
   std::optional<eval::DepthErrorSummary> depth;
   std::optional<eval::DepthErrorSummary> sample_ceiling;  ///< runs on ground-truth poses

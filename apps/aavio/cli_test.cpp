@@ -103,11 +103,13 @@ TEST(Cli, InfoDescribesDataFiles) {
 TEST(Cli, InfoTellsTextFilesApartByTheirColumns) {
   const auto dir = testing::ScratchDir();
   testing::WriteFile(dir / "events.txt", "0.001 10 20 1\n0.002 11 20 0\n");
-  testing::WriteFile(dir / "imu.txt", "# t ax ay az gx gy gz\n0.000 0 9.81 0 0.1 0 0\n"
-                                      "0.001 0 9.81 0 0.1 0 0\n0.002 0 9.81 0 0.1 0 0\n");
-  testing::WriteFile(dir / "groundtruth.txt", "# timestamp tx ty tz qx qy qz qw\n"
-                                              "0.0 0 0 0 0 0 0 1\n0.1 0.3 0 0 0 0 0 1\n"
-                                              "0.2 0.3 0.4 0 0 0 0 1\n");
+  testing::WriteFile(dir / "imu.txt",
+                     "# t ax ay az gx gy gz\n0.000 0 9.81 0 0.1 0 0\n"
+                     "0.001 0 9.81 0 0.1 0 0\n0.002 0 9.81 0 0.1 0 0\n");
+  testing::WriteFile(dir / "groundtruth.txt",
+                     "# timestamp tx ty tz qx qy qz qw\n"
+                     "0.0 0 0 0 0 0 0 1\n0.1 0.3 0 0 0 0 0 1\n"
+                     "0.2 0.3 0.4 0 0 0 0 1\n");
   testing::WriteFile(dir / "odd.txt", "1 2 3 4 5\n");
   Result r = RunAavio({"info", (dir / "events.txt").string(), "--json"});
   ASSERT_EQ(r.code, kExitOk) << r.err;
@@ -322,16 +324,33 @@ TEST(Cli, EvalComparesTrajectoryFiles) {
   r = RunAavio({"eval", "--est", (dir / "late.txt").string(), "--gt", g});
   EXPECT_EQ(r.code, kExitError);
   EXPECT_NE(r.err.find("overlap"), std::string::npos) << r.err;
-  // Two poses make no score (an alignment fits 3 positions); three do.
-  const std::string two_poses = (dir / "two.txt").string(), three = (dir / "three.txt").string();
-  testing::WriteFile(two_poses, "100.00 0 0 0 0 0 0 1\n100.01 0.02 0 0 0 0 0 1\n");
-  testing::WriteFile(three,
-                     "100.00 0 0 0 0 0 0 1\n100.01 0.02 0 0 0 0 0 1\n"
-                     "100.02 0.04 0.001 0 0 0 0 1\n");
-  r = RunAavio({"eval", "--est", two_poses, "--gt", g});
+  // Nine pose pairs make no score; ten do.
+  const std::string nine = (dir / "nine.txt").string(), ten = (dir / "ten.txt").string();
+  std::string nine_text, ten_text;
+  for (int i = 0; i < 10; ++i) {
+    const std::string line =
+        StrFormat("%.2f %.3f %.3f 0 0 0 0 1\n", 100.0 + 0.01 * i, 0.02 * i, 0.001 * i * i);
+    if (i < 9) nine_text += line;
+    ten_text += line;
+  }
+  testing::WriteFile(nine, nine_text);
+  testing::WriteFile(ten, ten_text);
+  r = RunAavio({"eval", "--est", nine, "--gt", g});
   EXPECT_EQ(r.code, kExitError);
-  EXPECT_NE(r.err.find("only 2 estimated pose(s)"), std::string::npos) << r.err;
-  EXPECT_EQ(RunAavio({"eval", "--est", three, "--gt", g}).code, kExitOk);
+  EXPECT_NE(r.err.find("only 9 estimated pose(s)"), std::string::npos) << r.err;
+  EXPECT_EQ(RunAavio({"eval", "--est", ten, "--gt", g}).code, kExitOk) << ten_text;
+  // An estimate whose stamps mostly miss the ground truth's (here: four per interval, a window of
+  // 1 ms) is no score either, though it has many pairs.
+  std::string dense;
+  for (int k = 0; k < 796; ++k)
+    dense += StrFormat("%.4f 0 0 0 0 0 0 1\n", 100.0 + 0.0025 * k);
+  testing::WriteFile(dir / "dense.txt", dense);
+  r = RunAavio({"eval", "--est", (dir / "dense.txt").string(), "--gt", g, "--max-dt", "0.001"});
+  EXPECT_EQ(r.code, kExitError);
+  EXPECT_NE(r.err.find("only 199 of the 796 estimated poses where the ground truth has poses "
+                       "found one within 1 ms (25 %, under 50 %)"),
+            std::string::npos)
+      << r.err;
   EXPECT_EQ(RunAavio({"eval", "--est", m}).code, kExitUsage);
   EXPECT_EQ(RunAavio({"eval", "--est", m, "--gt", g, "--run", dir.string()}).code, kExitUsage);
   r = RunAavio({"eval", "--run", dir.string()});

@@ -34,6 +34,7 @@ namespace fs = std::filesystem;
 struct EvalOptions {
   std::string est, gt, run, sequence;
   std::string align = "se3";
+  std::string format = "auto";  // of --est and --gt
   int align_frames = -1;
   double max_dt_s = 0.02;
   std::vector<double> lengths_m, fractions;
@@ -74,6 +75,8 @@ Status Evaluate(const EvalOptions& options, Context& ctx) {
   if (!options.fractions.empty()) eval_options.rpe.fractions = options.fractions;
   eval_options.rpe.lengths_m = options.lengths_m;
 
+  Expected<io::TrajectoryFormat> format = io::TrajectoryFormatNamed(options.format);
+  if (!format) return format.status().WithContext("--format");
   std::string est_path = options.est, gt_path = options.gt;
   std::optional<RunGroundTruth> truth;
   if (!options.run.empty()) {
@@ -85,11 +88,11 @@ Status Evaluate(const EvalOptions& options, Context& ctx) {
   }
   // A run on ground-truth poses (`aavio run --gt-poses`) has maps but no trajectory of its own.
   const bool has_estimate = options.run.empty() || fs::exists(est_path);
-  Expected<std::vector<geometry::StampedPose>> gt = io::ReadTumTrajectory(gt_path);
+  Expected<std::vector<geometry::StampedPose>> gt = io::ReadTrajectory(gt_path, *format);
   if (!gt) return gt.status();
   std::optional<TrajectoryEvaluation> e;
   if (has_estimate) {
-    Expected<std::vector<geometry::StampedPose>> est = io::ReadTumTrajectory(est_path);
+    Expected<std::vector<geometry::StampedPose>> est = io::ReadTrajectory(est_path, *format);
     if (!est) return est.status();
     Expected<TrajectoryEvaluation> evaluated = EvaluateTrajectories(*est, *gt, eval_options);
     if (!evaluated) return evaluated.status().WithContext(est_path + " vs " + gt_path);
@@ -137,8 +140,12 @@ void RegisterEval(CLI::App& app, Context& ctx) {
   auto options = std::make_shared<EvalOptions>();
   CLI::App* sub = app.add_subcommand(
       "eval", "Trajectory accuracy (ATE, RPE) of an estimate, or of a run with its depth accuracy");
-  sub->add_option("--est", options->est, "Estimated trajectory (TUM)");
-  sub->add_option("--gt", options->gt, "Ground-truth trajectory (TUM), same clock");
+  sub->add_option("--est", options->est, "Estimated trajectory (TUM or EuRoC)");
+  sub->add_option("--gt", options->gt, "Ground-truth trajectory (TUM or EuRoC), same clock");
+  sub->add_option("--format", options->format,
+                  "auto (told from each file), tum (stamps in s), tum_ns (in ns) or euroc (CSV, "
+                  "ns, w-first quaternion)")
+      ->capture_default_str();
   sub->add_option("--run", options->run,
                   "A run folder of `aavio run`: its trajectory and depth maps against the ground "
                   "truth its sequence names");

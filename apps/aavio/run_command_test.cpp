@@ -284,7 +284,7 @@ TEST(Cli, RunOdometryWritesItsOutputsAndIsDeterministic) {
   const std::string short_run = (dir / "short").string();
   r = RunAavio({"run", seq, "--out", short_run, "--quiet", "--duration", "0.025"});
   EXPECT_EQ(r.code, kExitError);
-  EXPECT_NE(r.err.find("a trajectory score needs at least 3"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("a trajectory score needs at least 10"), std::string::npos) << r.err;
   std::ifstream short_in(std::filesystem::path(short_run) / "summary.json");
   const nlohmann::json short_summary = nlohmann::json::parse(short_in);
   EXPECT_FALSE(short_summary.contains("accuracy"));

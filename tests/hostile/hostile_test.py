@@ -223,7 +223,7 @@ case('start_not_a_number', ['run', SEQ, '--out', 'out', '--start', 'abc'], 2,
 case('start_past_the_end', ['run', SEQ, '--out', 'out', '--start', '100'], 1,
      'no pose was estimated', max_seconds=10)
 case('eval_one_pose', ['eval', '--est', 'one.txt', '--gt', 'seq/groundtruth.txt'], 1,
-     'a trajectory score needs at least 3',
+     'a trajectory score needs at least 10',
      setup=lambda d: open(os.path.join(d, 'one.txt'), 'w').writelines(
          open(os.path.join(d, 'seq/groundtruth.txt')).readlines()[:2]), max_seconds=5)
 case('gt_after_the_run', ['run', SEQ, '--out', 'out'], 1, 'summary.json says why',
