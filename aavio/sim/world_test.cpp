@@ -14,12 +14,16 @@ SimulationRequest MiniRequest() {
   return request;
 }
 
-SimulationWorld World(std::vector<Disturbance> disturbances) {
-  SimulationRequest request = MiniRequest();
-  request.disturbances = std::move(disturbances);
+SimulationWorld WorldOf(const SimulationRequest& request) {
   Expected<SimulationWorld> world = BuildSimulationWorld(request);
   EXPECT_TRUE(world.ok()) << world.status().message();
   return std::move(*world);
+}
+
+SimulationWorld World(std::vector<Disturbance> disturbances) {
+  SimulationRequest request = MiniRequest();
+  request.disturbances = std::move(disturbances);
+  return WorldOf(request);
 }
 
 TimeNs At(const SimulationWorld& w, double t_s) {
@@ -32,16 +36,14 @@ TEST(SimulationWorld, SpeedPlaysTheSamePathFasterOrSlower) {
     SCOPED_TRACE(speed);
     SimulationRequest request = MiniRequest();
     request.speed = speed;
-    Expected<SimulationWorld> w = BuildSimulationWorld(request);
-    ASSERT_TRUE(w.ok()) << w.status().message();
+    const SimulationWorld w = WorldOf(request);
     // As long in data time; at t it is where the plain motion is at speed·t, moving speed× as fast.
-    EXPECT_NEAR(NsToSeconds(w->spline.t_end_ns() - w->spline.t_begin_ns()), 3.0, 0.01);
+    EXPECT_NEAR(NsToSeconds(w.spline.t_end_ns() - w.spline.t_begin_ns()), 3.0, 0.01);
     for (double t : {0.3, 0.6, 1.2}) {
-      EXPECT_LT(
-          (w->spline.Position(At(*w, t)) - plain.spline.Position(At(plain, speed * t))).norm(),
-          1e-3)
+      EXPECT_LT((w.spline.Position(At(w, t)) - plain.spline.Position(At(plain, speed * t))).norm(),
+                1e-3)
           << t;
-      EXPECT_NEAR(w->spline.LinearVelocity(At(*w, t)).norm(),
+      EXPECT_NEAR(w.spline.LinearVelocity(At(w, t)).norm(),
                   speed * plain.spline.LinearVelocity(At(plain, speed * t)).norm(), 1e-2)
           << t;
     }
@@ -52,17 +54,14 @@ TEST(SimulationWorld, SpeedPlaysTheSamePathFasterOrSlower) {
 }
 
 TEST(SimulationWorld, APresetsSensorTakesAnotherScenesAndMotion) {
-  SimulationRequest request;
-  request.preset = "mini";
+  SimulationRequest request = MiniRequest();
   request.duration_s = 1.0;
-  request.sensor = "ideal";
   request.scene = "planes";
   request.motion = "sinusoid";
-  Expected<SimulationWorld> w = BuildSimulationWorld(request);
-  ASSERT_TRUE(w.ok()) << w.status().message();
-  EXPECT_EQ(w->scene.quads().size(), 4u);                         // the planes
-  EXPECT_EQ(w->rig.width(), 160);                                 // the mini preset's sensor
-  EXPECT_GT(w->spline.LinearVelocity(At(*w, 0.0)).norm(), 0.05);  // the sinusoid moves at once
+  const SimulationWorld w = WorldOf(request);
+  EXPECT_EQ(w.scene.quads().size(), 4u);                        // the planes
+  EXPECT_EQ(w.rig.width(), 160);                                // the mini preset's sensor
+  EXPECT_GT(w.spline.LinearVelocity(At(w, 0.0)).norm(), 0.05);  // the sinusoid moves at once
   request.scene = "moon";
   EXPECT_NE(BuildSimulationWorld(request).status().message().find("scene = 'moon' is not a scene"),
             std::string::npos);
@@ -123,21 +122,20 @@ TEST(SimulationWorld, ARestAtTheStartStandsStillThenSpeedsUpIntoTheMotion) {
   const SimulationWorld plain = World({});
   SimulationRequest request = MiniRequest();
   request.rest_at_start_s = 1.0;
-  Expected<SimulationWorld> rest = BuildSimulationWorld(request);
-  ASSERT_TRUE(rest.ok()) << rest.status().message();
+  const SimulationWorld rest = WorldOf(request);
   // As long as asked; standing where the plain motion starts for the first second.
-  EXPECT_NEAR(NsToSeconds(rest->spline.t_end_ns() - rest->spline.t_begin_ns()), 3.0, 0.01);
+  EXPECT_NEAR(NsToSeconds(rest.spline.t_end_ns() - rest.spline.t_begin_ns()), 3.0, 0.01);
   const Eigen::Vector3d start = plain.spline.Position(At(plain, 0.0));
   for (double t = 0.0; t <= 0.95; t += 0.05) {
-    EXPECT_LT((rest->spline.Position(At(*rest, t)) - start).norm(), 1e-3) << t;
-    EXPECT_LT(rest->spline.AngularVelocity(At(*rest, t)).norm(), 0.02) << t;
+    EXPECT_LT((rest.spline.Position(At(rest, t)) - start).norm(), 1e-3) << t;
+    EXPECT_LT(rest.spline.AngularVelocity(At(rest, t)).norm(), 0.02) << t;
   }
   // Up to speed after half a second more: then it moves as the plain motion a quarter second
   // into its path (the ramp covered a quarter of a second of it).
   const double cruise = plain.spline.LinearVelocity(At(plain, 1.0)).norm();
   ASSERT_GT(cruise, 0.1);
-  EXPECT_GT(rest->spline.LinearVelocity(At(*rest, 1.25)).norm(), 0.05 * cruise);
-  EXPECT_LT((rest->spline.Position(At(*rest, 2.0)) - plain.spline.Position(At(plain, 0.75))).norm(),
+  EXPECT_GT(rest.spline.LinearVelocity(At(rest, 1.25)).norm(), 0.05 * cruise);
+  EXPECT_LT((rest.spline.Position(At(rest, 2.0)) - plain.spline.Position(At(plain, 0.75))).norm(),
             1e-3);
   // A rest that leaves no time to move is refused.
   request.rest_at_start_s = 2.5;
@@ -150,11 +148,10 @@ TEST(SimulationWorld, TextureContrastScalesTheScenesPatternsOnly) {
   const SimulationWorld plain = World({});
   SimulationRequest request = MiniRequest();
   request.texture_contrast = 0.5;
-  Expected<SimulationWorld> faint = BuildSimulationWorld(request);
-  ASSERT_TRUE(faint.ok()) << faint.status().message();
-  ASSERT_EQ(faint->scene.quads().size(), plain.scene.quads().size());
+  const SimulationWorld faint = WorldOf(request);
+  ASSERT_EQ(faint.scene.quads().size(), plain.scene.quads().size());
   for (std::size_t i = 0; i < plain.scene.quads().size(); ++i) {
-    const Quad &a = plain.scene.quads()[i], &b = faint->scene.quads()[i];
+    const Quad &a = plain.scene.quads()[i], &b = faint.scene.quads()[i];
     EXPECT_DOUBLE_EQ(b.texture.contrast, 0.5 * a.texture.contrast) << i;
     EXPECT_EQ(b.texture.mean, a.texture.mean) << i;
     EXPECT_EQ(b.origin, a.origin) << i;

@@ -110,6 +110,9 @@ TEST(Cli, InfoTellsTextFilesApartByTheirColumns) {
                      "# timestamp tx ty tz qx qy qz qw\n"
                      "0.0 0 0 0 0 0 0 1\n0.1 0.3 0 0 0 0 0 1\n"
                      "0.2 0.3 0.4 0 0 0 0 1\n");
+  testing::WriteFile(dir / "groundtruth_ns.txt",
+                     "0,0,0,0,0,0,0,1\n100000000,0.3,0,0,0,0,0,1\n"
+                     "200000000,0.3,0.4,0,0,0,0,1\n");
   testing::WriteFile(dir / "odd.txt", "1 2 3 4 5\n");
   Result r = RunAavio({"info", (dir / "events.txt").string(), "--json"});
   ASSERT_EQ(r.code, kExitOk) << r.err;
@@ -120,6 +123,12 @@ TEST(Cli, InfoTellsTextFilesApartByTheirColumns) {
   EXPECT_EQ(j["kind"], "imu");
   EXPECT_EQ(j["imu"]["samples"], 3);
   r = RunAavio({"info", (dir / "groundtruth.txt").string()});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  EXPECT_NE(r.out.find("3 poses at 10.0 Hz, 0.000000000 .. 0.200000000 s, path 0.700 m"),
+            std::string::npos)
+      << r.out;
+  // Comma-separated, nanosecond stamps: the same trajectory.
+  r = RunAavio({"info", (dir / "groundtruth_ns.txt").string()});
   ASSERT_EQ(r.code, kExitOk) << r.err;
   EXPECT_NE(r.out.find("3 poses at 10.0 Hz, 0.000000000 .. 0.200000000 s, path 0.700 m"),
             std::string::npos)

@@ -1,4 +1,5 @@
 // `aavio info` on data: an event file (.h5, .txt, .raw), a bag, or a whole sequence.
+#include <array>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -16,6 +17,7 @@
 #include "aavio/io/rosbag_messages.hpp"
 #include "aavio/io/sequence.hpp"
 #include "aavio/io/stream_stats.hpp"
+#include "aavio/io/text_fields.hpp"
 #include "aavio/io/trajectory_io.hpp"
 #include "info.hpp"
 
@@ -239,25 +241,24 @@ Expected<TextKind> KindOfTextFile(const std::string& path) {
   std::istringstream in(head);
   std::string line;
   for (int k = 0; std::getline(in, line); ++k) {
-    std::istringstream fields(line);
-    std::string first;
-    if (!(fields >> first) || first[0] == '#') continue;
-    int columns = 1;
-    for (std::string f; fields >> f;)
-      ++columns;
+    if (io::text::IsSkipped(line)) continue;
+    std::array<std::string_view, 1> first;
+    const std::size_t columns = io::text::SplitFields(line, &first);  // as the readers split
     if (columns == 4) return TextKind::kEvents;
     if (columns == 7) return TextKind::kImu;
     if (columns == 8) return TextKind::kTrajectory;
     return InvalidArgument(StrFormat(
         "%s, line %d: %d columns, which no text file aavio reads has: events 't x y p' (4), an "
         "IMU 't ax ay az gx gy gz' (7) or a TUM trajectory 't x y z qx qy qz qw' (8)",
-        path.c_str(), k + 1, columns));
+        path.c_str(), k + 1, static_cast<int>(columns)));
   }
   return TextKind::kEvents;  // empty: the event reader says so
 }
 
 Status DescribeTrajectory(const std::string& path, nlohmann::json* j, std::string* text) {
-  Expected<std::vector<geometry::StampedPose>> poses = io::ReadTumTrajectory(path);
+  // Stamps in seconds or nanoseconds, as `aavio eval` reads them.
+  Expected<std::vector<geometry::StampedPose>> poses =
+      io::ReadTrajectory(path, io::TrajectoryFormat::kAuto);
   if (!poses) return poses.status();
   double length_m = 0.0;
   for (std::size_t i = 1; i < poses->size(); ++i)
