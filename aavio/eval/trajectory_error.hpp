@@ -26,8 +26,17 @@ struct TrajectoryError {
   double path_length_m = 0.0;  ///< of the ground truth over the pairs
   double ate_rmse_m = 0.0, ate_mean_m = 0.0, ate_median_m = 0.0, ate_max_m = 0.0;
   double ate_rotation_rmse_deg = 0.0;  ///< angle of R_gtᵀ·R_align·R_est
+  /// How far the positions pin down the alignment's rotation: ATE rmse over the spread of the
+  /// aligned ground-truth positions across the worst axis (radians, in degrees; 0 without a
+  /// rotation in the alignment, capped at 180). A path that barely leaves a line or a point
+  /// leaves the rotation free, and ate_rotation_rmse_deg then measures the alignment.
+  double alignment_rotation_sigma_deg = 0.0;
+  /// Rotation error with the orientations aligned by their mean offset alone (the rotation
+  /// R minimising Σ‖R_gt − R·R_est‖², whatever the positions): orientation drift, free of how
+  /// well the path pins the position alignment.
+  double ate_rotation_rmse_orientation_aligned_deg = 0.0;
   std::vector<double> ate_per_pair_m;  ///< translation error of each pair after alignment
-  double rpe_step_s = 0.0;  ///< the relative pose error's time step
+  double rpe_step_s = 0.0;             ///< the relative pose error's time step
   double rpe_translation_rmse_m = 0.0, rpe_rotation_rmse_deg = 0.0;
   Similarity alignment;
 };

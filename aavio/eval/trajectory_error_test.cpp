@@ -44,6 +44,38 @@ TEST(TrajectoryError, AlignmentRecoversAKnownTransformAndScale) {
   EXPECT_GT(EvaluateTrajectory(*Associate(moved, gt), Alignment::kNone).ate_rmse_m, 1.0);
 }
 
+// How far the positions fix the alignment's rotation, and the rotation error free of it.
+TEST(TrajectoryError, AlignmentRotationUncertaintyAndOrientationAlignedError) {
+  // A straight line leaves the rotation about it free; a spiral a metre wide pins it.
+  std::vector<geometry::StampedPose> line;
+  for (int i = 0; i < 100; ++i) {
+    geometry::RigidTransform T;
+    T.t = {0.01 * i, 0.0, 0.0};
+    line.push_back({i * 10 * kNsPerMs, T});
+  }
+  auto noisy_line = line;
+  for (std::size_t i = 0; i < noisy_line.size(); ++i)
+    noisy_line[i].T_world_body.t.y() += (i % 2 ? 0.002 : -0.002);
+  const auto straight = EvaluateTrajectory(*Associate(noisy_line, line), Alignment::kSe3);
+  EXPECT_NEAR(straight.alignment_rotation_sigma_deg, 180.0, 1e-9);  // no spread across the line
+  const auto gt = Spiral(0, 10 * kNsPerMs, 200);
+  auto est = gt;
+  geometry::RigidTransform M;  // a constant frame offset, and 1 cm of noise
+  M.R = geometry::ExpSO3(Eigen::Vector3d(0.2, 0.0, 0.4));
+  for (std::size_t i = 0; i < est.size(); ++i) {
+    est[i].T_world_body = M * est[i].T_world_body;
+    est[i].T_world_body.t.z() += (i % 2 ? 0.01 : -0.01);
+  }
+  const auto spiral = EvaluateTrajectory(*Associate(est, gt), Alignment::kSe3);
+  // ATE 1 cm over a spread of ~0.7 m across the worst axis: under a degree.
+  EXPECT_GT(spiral.alignment_rotation_sigma_deg, 0.2);
+  EXPECT_LT(spiral.alignment_rotation_sigma_deg, 1.5);
+  // The orientations differ by M alone: aligned by their mean offset, none is left.
+  EXPECT_LT(spiral.ate_rotation_rmse_orientation_aligned_deg, 1e-6);
+  EXPECT_EQ(EvaluateTrajectory(*Associate(est, gt), Alignment::kNone).alignment_rotation_sigma_deg,
+            0.0);
+}
+
 TEST(TrajectoryError, HandComputedErrors) {
   // Ground truth along x at 1 m/s; the estimate is 3 cm off in y for every second pose.
   std::vector<geometry::StampedPose> gt, est;

@@ -11,6 +11,7 @@
 #include "aavio/io/prophesee_raw.hpp"
 #include "aavio/io/ros2_bag.hpp"
 #include "aavio/io/rosbag_messages.hpp"
+#include "aavio/io/trajectory_io.hpp"
 #include "aavio/io/yaml_reading.hpp"
 
 namespace aavio::io {
@@ -153,9 +154,12 @@ Expected<SequenceDescription> ReadSequenceYaml(const std::string& path) {
     if (!Scalar(gt, "trajectory").empty()) {
       SourceSpec spec;
       spec.path = Resolve(base, Scalar(gt, "trajectory"));
-      Expected<SourceFormat> format = DetectSourceFormat(spec.path);
-      if (!format || *format == SourceFormat::kDsecH5) {
-        return InvalidArgument(path + ": ground_truth.trajectory must be a TUM .txt or a .bag");
+      const bool csv = fs::path(spec.path).extension() == ".csv";  // EuRoC
+      Expected<SourceFormat> format = csv ? SourceFormat::kText : DetectSourceFormat(spec.path);
+      if (!format || (*format != SourceFormat::kText && *format != SourceFormat::kBag)) {
+        return InvalidArgument(path +
+                               ": ground_truth.trajectory must be a TUM .txt, a EuRoC .csv or a "
+                               "ROS1 .bag");
       }
       spec.format = *format;
       spec.topic = Scalar(gt, "topic");
@@ -315,6 +319,18 @@ Expected<std::unique_ptr<ImuStream>> OpenImuStream(const SourceSpec& spec,
   if (spec.format == SourceFormat::kAedat4)
     return OpenAedat4ImuStream(spec.path, spec.topic, options);
   return InvalidArgument(spec.path + ": IMU data are read from .txt, .bag or .aedat4 files");
+}
+
+Expected<std::vector<geometry::StampedPose>> ReadGroundTruthPoses(const SourceSpec& spec) {
+  if (spec.format == SourceFormat::kText) return ReadTrajectory(spec.path, TrajectoryFormat::kAuto);
+  if (spec.format == SourceFormat::kBag) return ReadBagPoses(spec.path, spec.topic);
+  return InvalidArgument(spec.path +
+                         ": ground-truth poses are read from TUM or EuRoC text files and ROS1 "
+                         "bags (geometry_msgs/PoseStamped); convert this one with `aavio convert`");
+}
+
+std::string DescribeSource(const SourceSpec& spec) {
+  return spec.topic.empty() ? spec.path : spec.path + " (topic " + spec.topic + ")";
 }
 
 namespace {

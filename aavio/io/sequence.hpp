@@ -14,7 +14,7 @@
 ///     topic: /davis/left/imu            # bags; empty = the only sensor_msgs/Imu topic
 ///     layout: ecd
 ///   ground_truth:                       # optional
-///     trajectory: groundtruth.txt       # TUM text, or a bag with a PoseStamped topic
+///     trajectory: groundtruth.txt       # TUM or EuRoC text, or a bag with a PoseStamped topic
 ///     topic: /gt/pose
 ///     depth: depth                      # folder of 16-bit disparity PNGs
 ///
@@ -54,7 +54,7 @@ struct SequenceDescription {
   SourceSpec left;
   SourceSpec right;
   std::optional<SourceSpec> imu;
-  std::optional<SourceSpec> gt_trajectory;  ///< text (TUM) or bag (PoseStamped topic)
+  std::optional<SourceSpec> gt_trajectory;  ///< text (TUM, EuRoC) or bag (PoseStamped topic)
   std::string gt_depth;
 };
 
@@ -72,6 +72,11 @@ Expected<std::unique_ptr<EventStream>> OpenEventStream(const SourceSpec& spec,
                                                        const StreamOptions& options);
 Expected<std::unique_ptr<ImuStream>> OpenImuStream(const SourceSpec& spec,
                                                    const StreamOptions& options);
+/// The poses of a ground-truth source: a TUM or EuRoC text file (told apart from the data), or a
+/// bag's geometry_msgs/PoseStamped topic (empty: the only one).
+Expected<std::vector<geometry::StampedPose>> ReadGroundTruthPoses(const SourceSpec& spec);
+/// "path" or "path (topic T)", for messages.
+std::string DescribeSource(const SourceSpec& spec);
 
 /// Everything of every stream within [t_begin_ns, t_end_ns).
 struct SensorPacket {

@@ -246,6 +246,8 @@ TEST(Sequence, BadDescriptionsGiveClearErrors) {
       {"events:\n  [left]: a.h5\n  right: b.h5\n",
        "sequence.yaml:2: a key under 'events.' is a list or a map, not a name"},
       {"? {events: 1}\n: x\n", "a key is a list or a map, not a name"},
+      {"events:\n  left: a.h5\n  right: b.h5\nground_truth:\n  trajectory: gt.h5\n",
+       "ground_truth.trajectory must be a TUM .txt, a EuRoC .csv or a ROS1 .bag"},
   };
   for (const Case& c : cases) {
     const auto dir = testing::ScratchDir();
@@ -254,6 +256,22 @@ TEST(Sequence, BadDescriptionsGiveClearErrors) {
     ASSERT_FALSE(d.ok()) << c.yaml;
     EXPECT_NE(d.status().message().find(c.expected), std::string::npos) << d.status().message();
   }
+  // EuRoC ground truth (.csv) is text, read as the eval reads it.
+  const auto dir = testing::ScratchDir();
+  const std::string euroc = testing::WriteFile(
+      dir / "gt.csv",
+      "#timestamp [ns], p_RS_R_x [m], p_RS_R_y [m], p_RS_R_z [m], q_RS_w [], q_RS_x [], q_RS_y [], "
+      "q_RS_z []\n1000000000,0,0,0,1,0,0,0\n1010000000,0.1,0,0,1,0,0,0\n");
+  Expected<SequenceDescription> with_csv = ReadSequenceYaml(testing::WriteFile(
+      dir / "sequence.yaml",
+      "events:\n  left: a.h5\n  right: b.h5\nground_truth:\n  trajectory: gt.csv\n"));
+  ASSERT_TRUE(with_csv.ok()) << with_csv.status().message();
+  EXPECT_EQ(with_csv->gt_trajectory->format, SourceFormat::kText);
+  Expected<std::vector<geometry::StampedPose>> poses =
+      ReadGroundTruthPoses(*with_csv->gt_trajectory);
+  ASSERT_TRUE(poses.ok()) << poses.status().message();
+  ASSERT_EQ(poses->size(), 2u);
+  EXPECT_EQ((*poses)[1].t_ns, 1010000000);
   EXPECT_NE(
       DescribeSequence(testing::ScratchDir().string()).status().message().find("no sequence here"),
       std::string::npos);

@@ -110,14 +110,9 @@ Expected<RunGroundTruth> RunGroundTruth::Of(const io::SequenceDescription& d,
                            ": names no ground_truth.trajectory, so there is nothing "
                            "to evaluate against (use --est/--gt with a file of yours)");
   }
-  if (d.gt_trajectory->format != io::SourceFormat::kText) {
-    return InvalidArgument(d.gt_trajectory->path +
-                           ": evaluation reads TUM text trajectories (convert a bag's poses with "
-                           "`aavio convert --to txt`)");
-  }
   RunGroundTruth truth;
   truth.sequence = d.origin;
-  truth.trajectory_path = d.gt_trajectory->path;
+  truth.trajectory = *d.gt_trajectory;
   truth.depth_dir = d.gt_depth;
   const mapping::RectifiedStereo stereo = mapping::RectifiedStereo::FromRig(rig);
   truth.camera = {stereo.width, stereo.height, stereo.f, stereo.cx_left, stereo.cy, stereo.fb()};
@@ -176,6 +171,8 @@ nlohmann::json TrajectoryEvaluationJson(const TrajectoryEvaluation& e) {
       {"ate_max_m", a.ate_max_m},
       {"ate_percent_of_path", a.path_length_m > 0.0 ? 100.0 * a.ate_rmse_m / a.path_length_m : 0.0},
       {"ate_rot_rmse_deg", a.ate_rotation_rmse_deg},
+      {"alignment_rotation_sigma_deg", a.alignment_rotation_sigma_deg},
+      {"ate_rot_rmse_orientation_aligned_deg", a.ate_rotation_rmse_orientation_aligned_deg},
       {"rpe_trans_pct", e.relative.trans_pct_rmse},
       {"rpe_rot_deg_per_m", e.relative.rot_deg_per_m_rmse},
       {"rpe_samples", e.relative.samples},
@@ -222,6 +219,11 @@ nlohmann::json DepthJson(const eval::DepthErrorSummary& s) {
   return j;
 }
 
+bool RotationErrorIsTheAlignments(const eval::TrajectoryError& a) {
+  return a.alignment_rotation_sigma_deg >= kMinAlignmentSigmaDeg &&
+         a.alignment_rotation_sigma_deg >= 0.5 * a.ate_rotation_rmse_deg;
+}
+
 std::string TrajectoryEvaluationTable(const TrajectoryEvaluation& e) {
   const eval::TrajectoryError& a = e.absolute;
   std::string s = StrFormat(
@@ -236,6 +238,15 @@ std::string TrajectoryEvaluationTable(const TrajectoryEvaluation& e) {
       "rotation rmse %.3f deg\n",
       a.ate_rmse_m, a.path_length_m > 0 ? 100.0 * a.ate_rmse_m / a.path_length_m : 0.0,
       a.ate_mean_m, a.ate_median_m, a.ate_max_m, a.ate_rotation_rmse_deg);
+  if (RotationErrorIsTheAlignments(a)) {
+    s += StrFormat(
+        "     warning: the path is too short or too straight to fix the alignment's rotation\n"
+        "     (uncertain by ~%.0f deg: the ATE over the positions' spread across the path), so "
+        "the\n"
+        "     rotation error above mostly measures the alignment; with the orientations aligned\n"
+        "     alone it is %.3f deg\n",
+        a.alignment_rotation_sigma_deg, a.ate_rotation_rmse_orientation_aligned_deg);
+  }
   s += StrFormat(
       "RPE  (ESVO papers' form, rmse over %zu sub-trajectories) translation %.3f %%  "
       "rotation %.4f deg/m\n",

@@ -49,15 +49,20 @@ Expected<TrajectoryEvaluation> EvaluateTrajectories(
 /// The ground truth a sequence names, as evaluating a run of it needs it.
 struct RunGroundTruth {
   std::string sequence;                     ///< its sequence.yaml (or folder)
-  std::string trajectory_path;              ///< TUM text
+  io::SourceSpec trajectory;                ///< TUM or EuRoC text, or a bag's pose topic
   std::string depth_dir;                    ///< empty when the sequence has no ground-truth depth
   eval::PinholeCamera camera;               ///< the rectified left camera
   double fb = 0.0, disparity_offset = 0.0;  ///< for disparity-PNG ground truth (DSEC)
 
   /// From a sequence's description and its calibration; an error says why there is nothing to
-  /// evaluate against (no ground-truth trajectory, or one that is not TUM text).
+  /// evaluate against (no ground-truth trajectory).
   static Expected<RunGroundTruth> Of(const io::SequenceDescription& sequence,
                                      const geometry::StereoRig& rig);
+  /// The ground-truth poses (io::ReadGroundTruthPoses).
+  Expected<std::vector<geometry::StampedPose>> ReadPoses() const {
+    return io::ReadGroundTruthPoses(trajectory);
+  }
+  std::string trajectory_name() const { return io::DescribeSource(trajectory); }
 };
 
 /// Scores every depth map of `run_depth_dir` (`timestamps.txt` + `disparity_INDEX.png` or
@@ -65,6 +70,12 @@ struct RunGroundTruth {
 Expected<eval::DepthErrorAccumulator> EvaluateRunDepth(
     const std::string& run_depth_dir, const RunGroundTruth& truth,
     const std::vector<geometry::StampedPose>& gt_poses);
+
+/// Whether the ATE rotation error is mostly the alignment's: the positions leave its rotation
+/// uncertain by at least half the error (eval::TrajectoryError::alignment_rotation_sigma_deg),
+/// and by at least kMinAlignmentSigmaDeg. The table then says so.
+inline constexpr double kMinAlignmentSigmaDeg = 0.1;
+bool RotationErrorIsTheAlignments(const eval::TrajectoryError& a);
 
 /// The `aavio eval --json` keys of docs/cli.md.
 nlohmann::json TrajectoryEvaluationJson(const TrajectoryEvaluation& e);

@@ -310,7 +310,7 @@ Expected<RunRecord> RunRecorder::Finish(bool interrupted, TimeNs end_ns,
     if (e) {
       record.accuracy = std::move(*e);
     } else {
-      record.accuracy_error = e.status().WithContext(truth_->trajectory_path);
+      record.accuracy_error = e.status().WithContext(truth_->trajectory_name());
     }
   }
   if (scorer_) {
@@ -326,6 +326,7 @@ Expected<RunRecord> RunRecorder::Finish(bool interrupted, TimeNs end_ns,
   s["mode"] = options_.mode;
   s["version"] = options_.version;
   s["sequence"] = options_.sequence;
+  s["calibration"] = options_.calibration;
   s["interrupted"] = interrupted;
   s["data_duration_s"] = record.data_s;
   s["wall_s"] = record.wall_s;

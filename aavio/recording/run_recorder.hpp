@@ -57,6 +57,7 @@ struct RunRecorderOptions {
   bool overwrite = false;
   std::string mode = "full";  ///< summary.json "mode"
   std::string sequence;       ///< summary.json "sequence": what `aavio eval --run` reopens
+  std::string calibration;    ///< summary.json "calibration": the one the run used
   std::string config_yaml;    ///< the effective configuration, written as config.yaml
   std::string version;        ///< summary.json "version": the program's, with its git revision
   TimeNs begin_ns = 0;        ///< the data time the run starts at

@@ -90,9 +90,7 @@ Status Convert(const ConvertOptions& options, Context& ctx) {
   }
   if (in->gt_trajectory) {
     Expected<std::vector<geometry::StampedPose>> poses =
-        in->gt_trajectory->format == io::SourceFormat::kBag
-            ? io::ReadBagPoses(in->gt_trajectory->path, in->gt_trajectory->topic)
-            : io::ReadTumTrajectory(in->gt_trajectory->path);
+        io::ReadGroundTruthPoses(*in->gt_trajectory);
     if (!poses) return poses.status();
     AAVIO_RETURN_IF_ERROR(sink.WritePoses(*poses));
   }

@@ -32,7 +32,7 @@ using recording::TrajectoryEvaluationTable;
 namespace fs = std::filesystem;
 
 struct EvalOptions {
-  std::string est, gt, run, sequence;
+  std::string est, gt, run, sequence, calibration;
   std::string align = "se3";
   std::string format = "auto";  // of --est and --gt
   int align_frames = -1;
@@ -40,30 +40,6 @@ struct EvalOptions {
   std::vector<double> lengths_m, fractions;
   bool json = false;
 };
-
-Expected<RunGroundTruth> RunSequence(const EvalOptions& options) {
-  std::string sequence = options.sequence;
-  if (sequence.empty()) {
-    const fs::path summary_path = fs::path(options.run) / recording::run_files::kSummary;
-    std::error_code ec;
-    if (!fs::exists(summary_path, ec)) {
-      return NotFound(summary_path.string() +
-                      ": not found; --run takes a folder written by `aavio run`");
-    }
-    Expected<std::string> text =
-        io::ReadBoundedFile(summary_path.string(), io::kMaxSettingsFileBytes, "run summary");
-    if (!text) return text.status();
-    nlohmann::json summary;
-    try {
-      summary = nlohmann::json::parse(*text);
-      sequence = summary.at("sequence").get<std::string>();
-    } catch (const nlohmann::json::exception& e) {
-      return ParseError(summary_path.string() + ": no readable \"sequence\" entry (" + e.what() +
-                        "); name the sequence with --sequence");
-    }
-  }
-  return LoadRunGroundTruth(sequence);
-}
 
 Status Evaluate(const EvalOptions& options, Context& ctx) {
   TrajectoryEvalOptions eval_options;
@@ -80,15 +56,19 @@ Status Evaluate(const EvalOptions& options, Context& ctx) {
   std::string est_path = options.est, gt_path = options.gt;
   std::optional<RunGroundTruth> truth;
   if (!options.run.empty()) {
-    Expected<RunGroundTruth> t = RunSequence(options);
+    Expected<RunInputs> run = ReadRunInputs(options.run, options.sequence, options.calibration);
+    if (!run) return run.status();
+    Expected<RunGroundTruth> t = LoadRunGroundTruth(*run);
     if (!t) return t.status();
     truth = std::move(*t);
     est_path = (fs::path(options.run) / recording::run_files::kTrajectory).string();
-    gt_path = truth->trajectory_path;
+    gt_path = truth->trajectory_name();
   }
   // A run on ground-truth poses (`aavio run --gt-poses`) has maps but no trajectory of its own.
   const bool has_estimate = options.run.empty() || fs::exists(est_path);
-  Expected<std::vector<geometry::StampedPose>> gt = io::ReadTrajectory(gt_path, *format);
+  // A run's ground truth is read as its sequence names it (text of any layout, or a bag topic).
+  Expected<std::vector<geometry::StampedPose>> gt =
+      truth ? truth->ReadPoses() : io::ReadTrajectory(gt_path, *format);
   if (!gt) return gt.status();
   std::optional<TrajectoryEvaluation> e;
   if (has_estimate) {
@@ -151,6 +131,8 @@ void RegisterEval(CLI::App& app, Context& ctx) {
                   "truth its sequence names");
   sub->add_option("--sequence", options->sequence,
                   "With --run: the sequence, if it moved since the run");
+  sub->add_option("--calib", options->calibration,
+                  "With --run: the calibration, if the run does not record one that still exists");
   sub->add_option("--align", options->align, "se3 | sim3 | posyaw | none")->capture_default_str();
   sub->add_option("--align-frames", options->align_frames,
                   "Align on the first N pose pairs only (-1: all)")

@@ -202,10 +202,7 @@ Status DescribeSequenceData(const io::SequenceDescription& d, bool with_stats, n
     *text += StrFormat("  %-16s none\n", "imu");
   }
   if (d.gt_trajectory) {
-    Expected<std::vector<geometry::StampedPose>> poses =
-        d.gt_trajectory->format == io::SourceFormat::kBag
-            ? io::ReadBagPoses(d.gt_trajectory->path, d.gt_trajectory->topic)
-            : io::ReadTumTrajectory(d.gt_trajectory->path);
+    Expected<std::vector<geometry::StampedPose>> poses = io::ReadGroundTruthPoses(*d.gt_trajectory);
     if (!poses) return poses.status();
     (*j)["ground_truth"] = {{"poses", poses->size()}, {"path", d.gt_trajectory->path}};
     *text += StrFormat("  %-16s %zu poses (%s)\n", "ground truth", poses->size(),

@@ -34,7 +34,7 @@ namespace fs = std::filesystem;
 struct ReportOptions {
   std::vector<std::string> runs;
   std::vector<std::string> names;
-  std::string out;
+  std::string out, calibration;
 };
 
 // At most `n` evenly spaced elements (keeps plots and the html small on long runs).
@@ -90,31 +90,22 @@ Expected<nlohmann::json> TrajectoryPlots(const std::string& estimate_path,
 }
 
 // Everything the plots of one run need, as JSON.
-Expected<nlohmann::json> GatherRun(const std::string& dir, const std::string& name, Context& ctx) {
-  const fs::path summary_path = fs::path(dir) / recording::run_files::kSummary;
-  std::error_code ec;
-  if (!fs::exists(summary_path, ec))
-    return NotFound(summary_path.string() + ": not found; --run takes a folder of `aavio run`");
-  Expected<std::string> text =
-      io::ReadBoundedFile(summary_path.string(), io::kMaxSettingsFileBytes, "run summary");
-  if (!text) return text.status();
+Expected<nlohmann::json> GatherRun(const std::string& dir, const std::string& name,
+                                   const std::string& calibration, Context& ctx) {
+  Expected<RunInputs> inputs = ReadRunInputs(dir, "", calibration);
+  if (!inputs) return inputs.status();
   nlohmann::json run;
-  try {
-    run["summary"] = nlohmann::json::parse(*text);
-  } catch (const nlohmann::json::exception& e) {
-    return ParseError(summary_path.string() + ": not valid JSON (" + e.what() + ")");
-  }
+  run["summary"] = inputs->summary;
   run["name"] = name;
   run["dir"] = fs::absolute(dir).string();
-  const std::string sequence = run["summary"].value("sequence", "");
-  Expected<RunGroundTruth> truth = LoadRunGroundTruth(sequence);
+  Expected<RunGroundTruth> truth = LoadRunGroundTruth(*inputs);
   const fs::path estimate_path = fs::path(dir) / recording::run_files::kTrajectory;
   if (!truth) {
     ctx.err << "aavio report: " << dir << ": no ground truth to evaluate against ("
             << truth.status().message() << "); plotting timings only\n";
     return run;
   }
-  Expected<std::vector<geometry::StampedPose>> gt = io::ReadTumTrajectory(truth->trajectory_path);
+  Expected<std::vector<geometry::StampedPose>> gt = truth->ReadPoses();
   if (!gt) return gt.status();
   // A run on ground-truth poses has depth maps but no trajectory of its own.
   if (fs::exists(estimate_path)) {
@@ -153,7 +144,7 @@ Status Report(const ReportOptions& options, Context& ctx) {
     const std::string& dir = options.runs[i];
     std::string name = options.names.empty() ? fs::path(dir).filename().string() : options.names[i];
     if (name.empty()) name = fs::absolute(dir).parent_path().filename().string();
-    Expected<nlohmann::json> run = GatherRun(dir, name, ctx);
+    Expected<nlohmann::json> run = GatherRun(dir, name, options.calibration, ctx);
     if (!run) return run.status();
     AAVIO_RETURN_IF_ERROR(
         io::WriteTextFile((data_dir / StrFormat("run_%zu.json", i)).string(), run->dump()));
@@ -200,6 +191,8 @@ void RegisterReport(CLI::App& app, Context& ctx) {
   sub->add_option("--run", options->runs, "A run folder of `aavio run` (repeat to compare runs)")
       ->required();
   sub->add_option("--name", options->names, "A label per run (default: the folder name)");
+  sub->add_option("--calib", options->calibration,
+                  "The calibration, for runs that do not record one that still exists");
   sub->add_option("--out", options->out,
                   "The html file, or a folder for report.html (default: FIRST_RUN/report.html)");
   sub->callback([&ctx, options] {

@@ -92,13 +92,12 @@ const char* ModeName(const RunOptions& o) {
 }
 
 // The sequence's ground truth, for the recorder to score against. The modes on ground truth
-// need it; the full odometry evaluates where the sequence has a TUM text trajectory.
+// need it; the full odometry evaluates where the sequence has a ground-truth trajectory.
 Status LoadGroundTruth(const OpenedSequence& s, bool required,
                        std::optional<recording::RunGroundTruth>* truth,
                        std::vector<geometry::StampedPose>* gt_poses) {
   const io::SequenceDescription& d = s.description;
-  if (!required && !(d.gt_trajectory && d.gt_trajectory->format == io::SourceFormat::kText))
-    return Status::Ok();
+  if (!required && !d.gt_trajectory) return Status::Ok();
   if (!d.gt_trajectory) {
     return InvalidArgument(d.origin +
                            ": --gt-poses and --gt-map need ground truth, and the sequence names "
@@ -106,7 +105,7 @@ Status LoadGroundTruth(const OpenedSequence& s, bool required,
   }
   Expected<recording::RunGroundTruth> of = recording::RunGroundTruth::Of(d, s.calibration.rig);
   if (!of) return of.status();
-  Expected<std::vector<geometry::StampedPose>> poses = io::ReadTumTrajectory(of->trajectory_path);
+  Expected<std::vector<geometry::StampedPose>> poses = of->ReadPoses();
   if (!poses) return poses.status();
   *truth = std::move(*of);
   *gt_poses = std::move(*poses);
@@ -336,6 +335,8 @@ Expected<bool> Run(RunOptions options, Context& ctx, int* exit_code) {
   // Absolute, so that `aavio eval --run` and `aavio report` find it from any folder.
   recorder_options.sequence =
       std::filesystem::absolute(opened->description.origin).lexically_normal().string();
+  recorder_options.calibration =
+      std::filesystem::absolute(opened->description.calibration).lexically_normal().string();
   recorder_options.version = VersionString();
   recorder_options.begin_ns = begin;
   recorder_options.config_yaml = io::FormatConfigYaml(

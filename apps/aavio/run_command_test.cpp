@@ -2,11 +2,11 @@
 // and the full odometry's outputs and determinism.
 #include <gtest/gtest.h>
 
+#include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <Eigen/Core>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -328,5 +328,40 @@ TEST(Cli, RunOdometryWritesItsOutputsAndIsDeterministic) {
   r = RunAavio({"run", seq, "--out", two, "--gt-map", "--gt-poses"});
   EXPECT_EQ(r.code, kExitUsage);
 }
+
+// README's path for a bag: `aavio run X.bag --calib DIR`, then `aavio eval --run` scores it
+// against the bag's own ground-truth pose topic with the calibration the run recorded.
+TEST(Cli, EvalScoresABagRunWithItsCalibrationAndTheBagsPoses) {
+  const auto dir = testing::ScratchDir();
+  const std::string seq = (dir / "seq").string();
+  Result r = RunAavio({"simulate", "--preset", "mini", "--duration", "1", "--format", "bag",
+                       "--out", seq, "--quiet"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  const std::filesystem::path calib = dir / "calib";
+  std::filesystem::rename(std::filesystem::path(seq) / "calibration", calib);
+  const std::string bag = (std::filesystem::path(seq) / "events.bag").string();
+  const std::string out = (dir / "run").string();
+  r = RunAavio({"run", bag, "--calib", calib.string(), "--out", out, "--quiet"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  EXPECT_NE(r.out.find("accuracy vs ground truth"), std::string::npos) << r.out;
+  std::ifstream in(std::filesystem::path(out) / "summary.json");
+  const nlohmann::json summary = nlohmann::json::parse(in);
+  EXPECT_EQ(summary["calibration"].get<std::string>(),
+            std::filesystem::absolute(calib).lexically_normal().string());
+  r = RunAavio({"eval", "--run", out, "--json"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  const nlohmann::json e = nlohmann::json::parse(r.out);
+  EXPECT_EQ(e["ground_truth"].get<std::string>(), bag);
+  EXPECT_NEAR(e["ate_rmse_m"].get<double>(), summary["accuracy"]["ate_rmse_m"].get<double>(), 1e-7);
+  // The calibration moved: the run's record no longer helps; --calib names it again.
+  const std::filesystem::path moved = dir / "calib_moved";
+  std::filesystem::rename(calib, moved);
+  r = RunAavio({"eval", "--run", out});
+  EXPECT_EQ(r.code, kExitError);
+  EXPECT_NE(r.err.find("give one with --calib"), std::string::npos) << r.err;
+  r = RunAavio({"eval", "--run", out, "--calib", moved.string()});
+  EXPECT_EQ(r.code, kExitOk) << r.err;
+}
+
 }  // namespace
 }  // namespace aavio::cli
