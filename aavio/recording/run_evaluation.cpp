@@ -12,6 +12,19 @@
 namespace aavio::recording {
 namespace {
 
+nlohmann::json VelocityJson(const TrajectoryEvaluation& e) {
+  const eval::VelocityError& v = e.velocity;
+  return {{"pairs", v.pairs},
+          {"auc", v.auc},
+          {"rve_median", v.rve_median},
+          {"linear_rmse_mps", v.linear_rmse_mps},
+          {"angular_rmse_dps", v.angular_rmse_dps},
+          {"gt_speed_median_mps", v.gt_speed_median_mps},
+          {"estimate", e.velocity_from_estimate ? "given" : "derived"},
+          {"ground_truth", e.velocity_from_ground_truth ? "given" : "derived"},
+          {"half_window_s", NsToSeconds(e.options.velocity_half_window_ns)}};
+}
+
 nlohmann::json StatsJson(const eval::ErrorStatistics& s) {
   return {{"rmse", s.rmse}, {"mean", s.mean}, {"median", s.median},  {"std", s.std},
           {"min", s.min},   {"max", s.max},   {"samples", s.samples}};
@@ -63,7 +76,9 @@ std::size_t PosesWhereGroundTruthIs(const std::vector<geometry::StampedPose>& es
 
 Expected<TrajectoryEvaluation> EvaluateTrajectories(
     const std::vector<geometry::StampedPose>& estimate,
-    const std::vector<geometry::StampedPose>& ground_truth, const TrajectoryEvalOptions& options) {
+    const std::vector<geometry::StampedPose>& ground_truth, const TrajectoryEvalOptions& options,
+    const std::vector<geometry::StampedVelocity>* estimate_velocities,
+    const std::vector<geometry::StampedVelocity>* gt_velocities) {
   AAVIO_RETURN_IF_ERROR(options.rpe.Validate());
   if (!(options.max_dt_s > 0.0 && options.max_dt_s < 10.0))
     return InvalidArgument(
@@ -100,6 +115,15 @@ Expected<TrajectoryEvaluation> EvaluateTrajectories(
                                         options.align_frames);
   e.relative = eval::ComputeRelativeError(e.pairs, e.gt_path_length_m, e.absolute.alignment.scale,
                                           options.rpe);
+  e.velocity_from_estimate = estimate_velocities && estimate_velocities->size() == estimate.size();
+  e.velocity_from_ground_truth = gt_velocities && gt_velocities->size() == ground_truth.size();
+  const TimeNs window = options.velocity_half_window_ns;
+  e.velocity = eval::EvaluateVelocities(
+      e.velocity_from_estimate ? *estimate_velocities
+                               : geometry::EstimateVelocities(estimate, window),
+      e.velocity_from_ground_truth ? *gt_velocities
+                                   : geometry::EstimateVelocities(ground_truth, window),
+      SecondsToNs(options.max_dt_s));
   return e;
 }
 
@@ -179,7 +203,8 @@ nlohmann::json TrajectoryEvaluationJson(const TrajectoryEvaluation& e) {
       {"rpe", rpe},
       {"rpe_step_s", a.rpe_step_s},
       {"rpe_step_trans_rmse_m", a.rpe_translation_rmse_m},
-      {"rpe_step_rot_rmse_deg", a.rpe_rotation_rmse_deg}};
+      {"rpe_step_rot_rmse_deg", a.rpe_rotation_rmse_deg},
+      {"velocity", VelocityJson(e)}};
 }
 
 nlohmann::json CoverageJson(const eval::DepthErrorSummary& s) {
@@ -263,6 +288,21 @@ std::string TrajectoryEvaluationTable(const TrajectoryEvaluation& e) {
   }
   s += StrFormat("RPE  over %.2f s steps: translation rmse %.4f m, rotation rmse %.4f deg\n",
                  a.rpe_step_s, a.rpe_translation_rmse_m, a.rpe_rotation_rmse_deg);
+  const eval::VelocityError& v = e.velocity;
+  if (v.pairs > 0) {
+    const std::string how =
+        e.velocity_from_estimate && e.velocity_from_ground_truth
+            ? "as the files give them"
+            : StrFormat(
+                  "%s from the poses over +-%.0f ms",
+                  e.velocity_from_estimate || e.velocity_from_ground_truth ? "partly" : "derived",
+                  NsToMs(e.options.velocity_half_window_ns));
+    s += StrFormat(
+        "VEL  (body frame, %s; %zu pairs, true speed median %.3f m/s) EvSLAM AUC %.3f, relative "
+        "error median %.1f %%, rmse %.3f m/s, %.2f deg/s\n",
+        how.c_str(), v.pairs, v.gt_speed_median_mps, v.auc, 100.0 * v.rve_median, v.linear_rmse_mps,
+        v.angular_rmse_dps);
+  }
   return s;
 }
 

@@ -14,6 +14,7 @@
 #include "aavio/eval/depth_error.hpp"
 #include "aavio/eval/relative_error.hpp"
 #include "aavio/eval/trajectory_error.hpp"
+#include "aavio/eval/velocity_error.hpp"
 #include "aavio/geometry/pose_buffer.hpp"
 #include "aavio/geometry/stereo_rig.hpp"
 #include "aavio/io/sequence.hpp"
@@ -26,6 +27,10 @@ struct TrajectoryEvalOptions {
   double max_dt_s = 0.02;                             ///< association window
   double rpe_step_s = 0.1;                            ///< per-tick RPE (what `aavio run` prints)
   eval::RelativeErrorConfig rpe;
+  /// Velocities not given with a trajectory are derived from its poses (geometry::
+  /// EstimateVelocities) over this half window, the same for both so that they are compared at
+  /// one bandwidth.
+  TimeNs velocity_half_window_ns = geometry::kDefaultVelocityHalfWindowNs;
 };
 
 struct TrajectoryEvaluation {
@@ -34,6 +39,9 @@ struct TrajectoryEvaluation {
   double gt_path_length_m = 0.0;  ///< of the whole ground truth (the RPE lengths' reference)
   eval::TrajectoryError absolute;
   eval::RelativeError relative;
+  eval::VelocityError velocity;         ///< EvSLAM's relative velocity error and its AUC
+  bool velocity_from_estimate = false;  ///< the estimate gave its velocities (else derived)
+  bool velocity_from_ground_truth = false;
 };
 
 /// Fewer pose pairs make no trajectory score; nor does matching under kMinMatchedShare of the
@@ -42,9 +50,13 @@ struct TrajectoryEvaluation {
 inline constexpr std::size_t kMinPosePairs = 10;
 inline constexpr double kMinMatchedShare = 0.5;
 
+/// `estimate_velocities` / `gt_velocities`: the trajectories' own velocities, one per pose, if
+/// their files hold them (EvSLAM's layout); otherwise derived from the poses.
 Expected<TrajectoryEvaluation> EvaluateTrajectories(
     const std::vector<geometry::StampedPose>& estimate,
-    const std::vector<geometry::StampedPose>& ground_truth, const TrajectoryEvalOptions& options);
+    const std::vector<geometry::StampedPose>& ground_truth, const TrajectoryEvalOptions& options,
+    const std::vector<geometry::StampedVelocity>* estimate_velocities = nullptr,
+    const std::vector<geometry::StampedVelocity>* gt_velocities = nullptr);
 
 /// The ground truth a sequence names, as evaluating a run of it needs it.
 struct RunGroundTruth {

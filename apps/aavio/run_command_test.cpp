@@ -273,6 +273,10 @@ TEST(Cli, RunOdometryWritesItsOutputsAndIsDeterministic) {
   // (the run's trajectory file holds 9 decimals)
   EXPECT_NEAR(e["ate_rmse_m"].get<double>(), j["accuracy"]["ate_rmse_m"].get<double>(), 1e-7);
   EXPECT_EQ(e["rpe"].size(), 5u);
+  // Velocities derived from both trajectories' poses, scored as EvSLAM does.
+  EXPECT_GT(e["velocity"]["pairs"].get<int>(), 100);
+  EXPECT_GT(e["velocity"]["auc"].get<double>(), 0.3);
+  EXPECT_LE(e["velocity"]["auc"].get<double>(), 1.0);
   EXPECT_DOUBLE_EQ(e["depth"]["relative"].get<double>(), j["depth"]["relative"].get<double>());
   EXPECT_LT(e["depth"]["relative"].get<double>(), 0.5);
   r = RunAavio({"eval", "--run", one});
