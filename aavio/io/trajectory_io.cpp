@@ -23,17 +23,21 @@ const char* TrajectoryFormatName(TrajectoryFormat format) {
       return "tum_ns";
     case TrajectoryFormat::kEuroc:
       return "euroc";
+    case TrajectoryFormat::kEvslam:
+      return "evslam";
   }
   return "?";
 }
 
 Expected<TrajectoryFormat> TrajectoryFormatNamed(const std::string& name) {
-  for (TrajectoryFormat f : {TrajectoryFormat::kAuto, TrajectoryFormat::kTum,
-                             TrajectoryFormat::kTumNs, TrajectoryFormat::kEuroc}) {
+  for (TrajectoryFormat f :
+       {TrajectoryFormat::kAuto, TrajectoryFormat::kTum, TrajectoryFormat::kTumNs,
+        TrajectoryFormat::kEuroc, TrajectoryFormat::kEvslam}) {
     if (name == TrajectoryFormatName(f)) return f;
   }
-  return InvalidArgument("trajectory format '" + name +
-                         "' is none of auto, tum (seconds), tum_ns (nanosecond stamps), euroc");
+  return InvalidArgument(
+      "trajectory format '" + name +
+      "' is none of auto, tum (seconds), tum_ns (nanosecond stamps), euroc, evslam");
 }
 
 namespace {
@@ -68,6 +72,9 @@ Expected<TrajectoryFormat> DetectFormat(const std::string& text, const std::stri
                              ": 12 columns, a KITTI pose file: it has no timestamps to pair "
                              "poses by; give a TUM or EuRoC file (t, position, quaternion)");
     }
+    // EvSLAM: TUM and a velocity, 11 columns with stamps in seconds; EuRoC's are integers.
+    if (stamps.empty() && n == 11 && !euroc_header && !IsInteger(f[0]))
+      return TrajectoryFormat::kEvslam;
     if (stamps.empty() && (euroc_header || n >= 11)) return TrajectoryFormat::kEuroc;
     stamps.push_back(f[0]);
   }
@@ -97,10 +104,14 @@ Expected<std::vector<geometry::StampedPose>> ParseTrajectory(const std::string& 
     format = *detected;
   }
   // Columns: TUM t x y z qx qy qz qw; EuRoC t[ns] x y z qw qx qy qz (and more after).
+  // EvSLAM: TUM's columns, then vx vy vz (not read here).
   const bool euroc = format == TrajectoryFormat::kEuroc;
+  const bool evslam = format == TrajectoryFormat::kEvslam;
   const bool ns_stamps = euroc || format == TrajectoryFormat::kTumNs;
-  const char* layout = euroc ? "'timestamp[ns], x, y, z, qw, qx, qy, qz' (EuRoC)"
-                             : "'timestamp tx ty tz qx qy qz qw' (TUM)";
+  const std::size_t columns = evslam ? 11 : 8;
+  const char* layout = euroc    ? "'timestamp[ns], x, y, z, qw, qx, qy, qz' (EuRoC)"
+                       : evslam ? "'timestamp tx ty tz qx qy qz qw vx vy vz' (EvSLAM)"
+                                : "'timestamp tx ty tz qx qy qz qw' (TUM)";
   std::vector<geometry::StampedPose> poses;
   std::size_t line_number = 0;
   std::size_t previous_line = 0;
@@ -115,9 +126,10 @@ Expected<std::vector<geometry::StampedPose>> ParseTrajectory(const std::string& 
     const std::string where = origin + ":" + std::to_string(line_number);
     std::array<std::string_view, 8> fields;
     const std::size_t count = SplitFields(line, &fields);
-    if (euroc ? count < 8 : count != 8) {
-      return ParseError(where + ": expected " + (euroc ? "at least " : "") + "8 columns " + layout +
-                        ", found " + std::to_string(count) + ": '" + PrintableExcerpt(line) + "'");
+    if (euroc ? count < 8 : count != columns) {
+      return ParseError(where + ": expected " + (euroc ? "at least " : "") +
+                        std::to_string(columns) + " columns " + layout + ", found " +
+                        std::to_string(count) + ": '" + PrintableExcerpt(line) + "'");
     }
     TimeNs t_ns = 0;
     if (ns_stamps) {

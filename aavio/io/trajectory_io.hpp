@@ -25,7 +25,9 @@ Expected<std::vector<geometry::StampedPose>> ParseTumTrajectory(const std::strin
 /// tells them apart from the data: a `[ns]` or `q_RS_w` header line, or 11 and more columns, is
 /// EuRoC; integer stamps that are epoch-sized (from 10^12) or step by 1000 and more are
 /// nanoseconds. KITTI's 12-column files have no timestamps and are refused by name.
-enum class TrajectoryFormat { kAuto, kTum, kTumNs, kEuroc };
+/// EvSLAM's `t tx ty tz qx qy qz qw vx vy vz` (seconds; 11 columns with a non-integer stamp) is
+/// read for its poses (kEvslam).
+enum class TrajectoryFormat { kAuto, kTum, kTumNs, kEuroc, kEvslam };
 const char* TrajectoryFormatName(TrajectoryFormat format);
 Expected<TrajectoryFormat> TrajectoryFormatNamed(const std::string& name);
 

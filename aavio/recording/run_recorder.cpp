@@ -1,6 +1,8 @@
 #include "aavio/recording/run_recorder.hpp"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 
 #include "aavio/common/format.hpp"
@@ -281,6 +283,54 @@ Status RunRecorder::CloseTrajectory() {
   return io::WriteTumTrajectory(path.string(), trajectory_);
 }
 
+// The velocity at every pose, and the trajectory in the layout and at the stamps asked for;
+// their summary for summary.json.
+nlohmann::json RunRecorder::WriteMotion(std::vector<Status>* failures) {
+  auto keep_status = [failures](Status status) {
+    if (!status.ok()) failures->push_back(std::move(status));
+  };
+  auto* keep = &keep_status;
+  nlohmann::json j = nlohmann::json::object();
+  if (trajectory_.empty()) return j;
+  const fs::path out(options_.out_dir);
+  const std::vector<geometry::StampedVelocity> velocities =
+      geometry::EstimateVelocities(trajectory_, geometry::kDefaultVelocityHalfWindowNs);
+  (*keep)(
+      io::WriteTextFile((out / run_files::kVelocity).string(), io::FormatVelocities(velocities)));
+  std::vector<double> speeds, turn_rates;
+  for (const geometry::StampedVelocity& v : velocities) {
+    if (!v.valid) continue;
+    speeds.push_back(v.v_body_mps.norm());
+    turn_rates.push_back(v.w_body_radps.norm() * 180.0 / M_PI);
+  }
+  if (!speeds.empty()) {
+    auto median = [](std::vector<double> x) {
+      std::nth_element(x.begin(), x.begin() + static_cast<std::ptrdiff_t>(x.size() / 2), x.end());
+      return x[x.size() / 2];
+    };
+    j["speed_median_mps"] = median(speeds);
+    j["speed_max_mps"] = *std::max_element(speeds.begin(), speeds.end());
+    j["turn_rate_median_dps"] = median(turn_rates);
+  }
+  if (options_.layout == io::TrajectoryLayout::kTum && options_.poses_at.empty()) return j;
+  const fs::path path = out / io::TrajectoryLayoutFileName(options_.layout);
+  if (options_.poses_at.empty()) {
+    (*keep)(io::WriteTrajectory(path.string(), trajectory_, velocities, options_.layout));
+    return j;
+  }
+  const geometry::Sampled sampled = geometry::SampleAt(trajectory_, velocities, options_.poses_at);
+  (*keep)(io::WriteTrajectory(path.string(), sampled.poses, sampled.velocities, options_.layout));
+  j["poses_at"] = {{"requested", options_.poses_at.size()},
+                   {"written", sampled.poses.size()},
+                   {"missing", sampled.missing.size()},
+                   {"file", path.filename().string()}};
+  if (!sampled.missing.empty()) {
+    j["poses_at"]["first_missing_s"] = NsToSeconds(sampled.missing.front());
+    j["poses_at"]["last_missing_s"] = NsToSeconds(sampled.missing.back());
+  }
+  return j;
+}
+
 Expected<RunRecord> RunRecorder::Finish(bool interrupted, TimeNs end_ns,
                                         const nlohmann::json& extra) {
   RunRecord record;
@@ -299,6 +349,7 @@ Expected<RunRecord> RunRecorder::Finish(bool interrupted, TimeNs end_ns,
     if (!csv_) keep(IoError((out / run_files::kTimings).string() + ": write failed (disk full?)"));
   }
   keep(CloseTrajectory());
+  nlohmann::json motion = WriteMotion(&failures);
   keep(io::WriteTextFile((out / run_files::kConfig).string(), options_.config_yaml));
   keep(cloud_file_.Close());
   keep(depth_writer_.Finish());
@@ -327,6 +378,7 @@ Expected<RunRecord> RunRecorder::Finish(bool interrupted, TimeNs end_ns,
   s["version"] = options_.version;
   s["sequence"] = options_.sequence;
   s["calibration"] = options_.calibration;
+  s["motion"] = motion;
   s["interrupted"] = interrupted;
   s["data_duration_s"] = record.data_s;
   s["wall_s"] = record.wall_s;

@@ -24,6 +24,7 @@
 #include "aavio/io/depth_folder_writer.hpp"
 #include "aavio/io/output_folder.hpp"
 #include "aavio/io/ply.hpp"
+#include "aavio/io/trajectory_writing.hpp"
 #include "aavio/mapping/global_cloud.hpp"
 #include "aavio/pipeline/mapping_front_end.hpp"
 #include "aavio/pipeline/odometry.hpp"
@@ -41,6 +42,7 @@ namespace aavio::recording {
 namespace run_files {
 inline constexpr char kTrajectory[] = "stamped_traj_estimate.txt";
 inline constexpr char kTrajectoryPart[] = "stamped_traj_estimate.txt.part";  ///< while it goes
+inline constexpr char kVelocity[] = "stamped_velocity_estimate.txt";         ///< one per pose
 inline constexpr char kSummary[] = "summary.json";
 inline constexpr char kTimings[] = "timings.csv";
 inline constexpr char kConfig[] = "config.yaml";
@@ -61,6 +63,11 @@ struct RunRecorderOptions {
   std::string config_yaml;    ///< the effective configuration, written as config.yaml
   std::string version;        ///< summary.json "version": the program's, with its git revision
   TimeNs begin_ns = 0;        ///< the data time the run starts at
+  /// Also write the trajectory in this layout (io::TrajectoryLayoutFileName), at `poses_at`
+  /// (interpolated, geometry::SampleAt) when that is not empty, else at every pose. kTum with
+  /// no stamps writes nothing more (stamped_traj_estimate.txt is TUM).
+  io::TrajectoryLayout layout = io::TrajectoryLayout::kTum;
+  std::vector<TimeNs> poses_at;
 };
 
 /// A finished run's figures (summary.json holds the same).
@@ -119,6 +126,8 @@ class RunRecorder {
   void AddRepresentation(TimeNs t_ns, const events::RepresentationTimings& t);
   /// stamped_traj_estimate.txt from its part file, or from memory if a write to that failed.
   Status CloseTrajectory();
+  /// stamped_velocity_estimate.txt and the trajectory in options_.layout; summary.json "motion".
+  nlohmann::json WriteMotion(std::vector<Status>* failures);
   void AddCycleReport(const mapping::MappingCycleReport& r);
   /// A confirmed map: into the cloud, and every depth_every_-th into depth/ (scored there in the
   /// odometry's modes), drawn over the time surface of `observation` (may be null).

@@ -123,8 +123,8 @@ void RegisterEval(CLI::App& app, Context& ctx) {
   sub->add_option("--est", options->est, "Estimated trajectory (TUM or EuRoC)");
   sub->add_option("--gt", options->gt, "Ground-truth trajectory (TUM or EuRoC), same clock");
   sub->add_option("--format", options->format,
-                  "auto (told from each file), tum (stamps in s), tum_ns (in ns) or euroc (CSV, "
-                  "ns, w-first quaternion)")
+                  "auto (told from each file), tum (stamps in s), tum_ns (in ns), euroc (CSV, "
+                  "ns, w-first quaternion) or evslam (TUM + velocity)")
       ->capture_default_str();
   sub->add_option("--run", options->run,
                   "A run folder of `aavio run`: its trajectory and depth maps against the ground "

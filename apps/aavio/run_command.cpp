@@ -22,6 +22,7 @@
 #include "aavio/io/config_yaml.hpp"
 #include "aavio/io/prefetching_reader.hpp"
 #include "aavio/io/trajectory_io.hpp"
+#include "aavio/io/trajectory_writing.hpp"
 #include "aavio/pipeline/mapping_front_end.hpp"
 #include "aavio/pipeline/odometry.hpp"
 #include "aavio/recording/run_recorder.hpp"
@@ -51,6 +52,7 @@ struct RunOptions {
   bool quiet = false;
   double start_s = 0.0, duration_s = 0.0;
   int repeat = 1;
+  std::string format = "tum", poses_at;
   config::ConfigSources config;
 };
 
@@ -124,6 +126,19 @@ void PrintOdometryRun(const recording::RunRecord& r, Context& ctx) {
       "re-initialisation(s)\n",
       s["poses"].get<std::size_t>(), count("ok"), count("lost"), count("no_map"), imu.c_str(),
       s["bootstraps"].get<int>(), s["reinitialisations"].get<int>());
+  if (s.contains("motion") && s["motion"].contains("poses_at")) {
+    const nlohmann::json& p = s["motion"]["poses_at"];
+    ctx.out << StrFormat("%s: %zu of the %zu stamps asked for",
+                         p["file"].get<std::string>().c_str(), p["written"].get<std::size_t>(),
+                         p["requested"].get<std::size_t>());
+    if (p["missing"].get<std::size_t>() > 0) {
+      ctx.out << StrFormat(
+          "; %zu have no pose (%.3f-%.3f s: before or after the trajectory, or in a gap)",
+          p["missing"].get<std::size_t>(), p["first_missing_s"].get<double>(),
+          p["last_missing_s"].get<double>());
+    }
+    ctx.out << "\n";
+  }
   for (const char* camera : {"left", "right"}) {
     if (s["event_gaps"][camera].empty()) continue;
     std::string line = StrFormat("no events from the %s camera:", camera);
@@ -198,8 +213,16 @@ void PrintRun(const recording::RunRecord& record, const RunOptions& options,
   }
   if (record.depth) ctx.out << recording::DepthTable(*record.depth);
   if (record.sample_ceiling) ctx.out << recording::SampleCeilingLine(*record.sample_ceiling);
-  ctx.out << "wrote " << options.out_dir << "/{"
-          << (s["poses"].get<std::size_t>() > 0 ? "stamped_traj_estimate.txt,timings.csv," : "")
+  std::string trajectories;
+  if (s["poses"].get<std::size_t>() > 0) {
+    trajectories = "stamped_traj_estimate.txt,stamped_velocity_estimate.txt,timings.csv,";
+    if (s.contains("motion") && s["motion"].contains("poses_at"))
+      trajectories += s["motion"]["poses_at"]["file"].get<std::string>() + ",";
+    else if (options.format != "tum")
+      trajectories +=
+          io::TrajectoryLayoutFileName(*io::TrajectoryLayoutNamed(options.format)) + ",";
+  }
+  ctx.out << "wrote " << options.out_dir << "/{" << trajectories
           << "summary.json,config.yaml,map.ply"
           << (s["depth_maps_written"].get<int>() > 0 ? ",depth/" : "") << "}\n";
 }
@@ -285,6 +308,17 @@ Expected<bool> Run(RunOptions options, Context& ctx, int* exit_code) {
   const TimeNs begin = reader->start_ns() + SecondsToNs(options.start_s);
   const TimeNs end =
       options.duration_s > 0.0 ? begin + SecondsToNs(options.duration_s) : reader->end_ns();
+  Expected<io::TrajectoryLayout> layout = io::TrajectoryLayoutNamed(options.format);
+  if (!layout) {
+    *exit_code = kExitUsage;
+    return layout.status().WithContext("--format");
+  }
+  std::vector<TimeNs> poses_at;
+  if (!options.poses_at.empty()) {
+    Expected<std::vector<TimeNs>> stamps = io::ReadStamps(options.poses_at);
+    if (!stamps) return stamps.status().WithContext("--poses-at");
+    poses_at = std::move(*stamps);
+  }
   if (options.start_s > 0.0) AAVIO_RETURN_IF_ERROR(reader->Seek(begin));
   AAVIO_RETURN_IF_ERROR(ConfigureForSequence(*opened, begin, end, &options, ctx));
   // The ESVO-like mode is the shipped overlay configs/overlays/esvo.yaml (the embedded one, even
@@ -339,6 +373,8 @@ Expected<bool> Run(RunOptions options, Context& ctx, int* exit_code) {
       std::filesystem::absolute(opened->description.calibration).lexically_normal().string();
   recorder_options.version = VersionString();
   recorder_options.begin_ns = begin;
+  recorder_options.layout = *layout;
+  recorder_options.poses_at = std::move(poses_at);
   recorder_options.config_yaml = io::FormatConfigYaml(
       FlattenConfig(*config), "aavio effective configuration (" + VersionString() +
                                   ")\nfrom: " + config::DescribeSources(options.config) +
@@ -476,6 +512,13 @@ void RegisterRun(CLI::App& app, Context& ctx) {
                   "Read the sequence N times back to back, its clock shifted each time: a long "
                   "run from a short sequence, for memory and speed over time (no accuracy)")
       ->check(NumberIn(1, 100000));
+  sub->add_option("--format", options->format,
+                  "Also write the trajectory as trajectory_FORMAT.txt: tum, kitti (+ _times.txt), "
+                  "euroc (.csv, world-frame velocity) or evslam (camera-frame velocity)")
+      ->capture_default_str();
+  sub->add_option("--poses-at", options->poses_at,
+                  "A file of stamps (first column; s or ns): the --format trajectory at these, "
+                  "interpolated (e.g. EvSLAM's reference times)");
   sub->add_flag("--quiet", options->quiet, "No progress output");
   AddConfigOptions(*sub, &options->config);
   sub->callback([&ctx, options] {

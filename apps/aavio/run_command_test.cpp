@@ -365,6 +365,39 @@ TEST(Cli, EvalScoresABagRunWithItsCalibrationAndTheBagsPoses) {
   EXPECT_NE(r.err.find("give one with --calib"), std::string::npos) << r.err;
   r = RunAavio({"eval", "--run", out, "--calib", moved.string()});
   EXPECT_EQ(r.code, kExitOk) << r.err;
+
+  // EvSLAM's submission: poses and camera-frame velocities at given stamps (here every other
+  // ground-truth stamp, and two outside the run), which aavio eval reads back.
+  std::string stamps = "0.0\n";
+  const std::string gt = ReadAll(std::filesystem::path(seq) / "groundtruth.txt");
+  std::istringstream lines(gt);
+  std::string line;
+  int n = 0;
+  while (std::getline(lines, line))
+    if (!line.empty() && line[0] != '#' && n++ % 2 == 1)
+      stamps += line.substr(0, line.find(' ')) + "\n";
+  stamps += "100.0\n";
+  const std::string stamps_path = testing::WriteFile(dir / "ref_time.txt", stamps);
+  const std::string evslam = (dir / "evslam").string();
+  r = RunAavio({"run", bag, "--calib", moved.string(), "--out", evslam, "--quiet", "--format",
+                "evslam", "--poses-at", stamps_path});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  EXPECT_NE(r.out.find("trajectory_evslam.txt: "), std::string::npos) << r.out;
+  std::ifstream evslam_in(std::filesystem::path(evslam) / "summary.json");
+  const nlohmann::json motion = nlohmann::json::parse(evslam_in)["motion"];
+  EXPECT_EQ(motion["poses_at"]["missing"].get<int>(), 2) << motion.dump();
+  EXPECT_GT(motion["speed_median_mps"].get<double>(), 0.05);
+  const std::string file = (std::filesystem::path(evslam) / "trajectory_evslam.txt").string();
+  const std::string written = ReadAll(file);
+  EXPECT_EQ(std::count(written.begin(), written.end(), '\n'),
+            motion["poses_at"]["written"].get<int>() + 1);  // + the header
+  r = RunAavio(
+      {"eval", "--est", file, "--gt", (std::filesystem::path(seq) / "groundtruth.txt").string()});
+  EXPECT_EQ(r.code, kExitOk) << r.err;
+  r = RunAavio(
+      {"run", bag, "--calib", moved.string(), "--out", evslam, "--overwrite", "--format", "g2o"});
+  EXPECT_EQ(r.code, kExitUsage);
+  EXPECT_NE(r.err.find("none of tum, kitti, euroc, evslam"), std::string::npos) << r.err;
 }
 
 }  // namespace
