@@ -14,6 +14,7 @@
 #include "aavio/recording/run_recorder.hpp"
 #include "cli.hpp"
 #include "option_checks.hpp"
+#include "results_table.hpp"
 #include "sequence_opening.hpp"
 
 namespace aavio::cli {
@@ -32,16 +33,27 @@ using recording::TrajectoryEvaluationTable;
 namespace fs = std::filesystem;
 
 struct EvalOptions {
-  std::string est, gt, run, sequence, calibration;
+  std::string est, gt, sequence, calibration;
+  std::vector<std::string> runs, names;
   std::string align = "se3";
   std::string format = "auto";  // of --est and --gt
+  std::string table = "md";     // several runs
   int align_frames = -1;
   double max_dt_s = 0.02;
   std::vector<double> lengths_m, fractions;
   bool json = false;
 };
 
-Status Evaluate(const EvalOptions& options, Context& ctx) {
+// One estimate scored: a trajectory pair, or a run folder (`run_dir` not empty).
+struct Scored {
+  std::string est_path, gt_path;
+  std::optional<RunGroundTruth> truth;
+  std::optional<TrajectoryEvaluation> trajectory;
+  std::optional<eval::DepthErrorSummary> depth;
+  nlohmann::json summary;  // the run's summary.json
+};
+
+Expected<TrajectoryEvalOptions> TrajectoryOptions(const EvalOptions& options) {
   TrajectoryEvalOptions eval_options;
   Expected<eval::Alignment> alignment = eval::ParseAlignment(options.align);
   if (!alignment) return alignment.status().WithContext("--align");
@@ -50,67 +62,137 @@ Status Evaluate(const EvalOptions& options, Context& ctx) {
   eval_options.max_dt_s = options.max_dt_s;
   if (!options.fractions.empty()) eval_options.rpe.fractions = options.fractions;
   eval_options.rpe.lengths_m = options.lengths_m;
+  return eval_options;
+}
 
+Expected<Scored> Score(const EvalOptions& options, const std::string& run_dir) {
+  Expected<TrajectoryEvalOptions> eval_options = TrajectoryOptions(options);
+  if (!eval_options) return eval_options.status();
   Expected<io::TrajectoryFormat> format = io::TrajectoryFormatNamed(options.format);
   if (!format) return format.status().WithContext("--format");
-  std::string est_path = options.est, gt_path = options.gt;
-  std::optional<RunGroundTruth> truth;
-  if (!options.run.empty()) {
-    Expected<RunInputs> run = ReadRunInputs(options.run, options.sequence, options.calibration);
+  Scored r;
+  r.est_path = options.est;
+  r.gt_path = options.gt;
+  if (!run_dir.empty()) {
+    Expected<RunInputs> run = ReadRunInputs(run_dir, options.sequence, options.calibration);
     if (!run) return run.status();
+    r.summary = run->summary;
     Expected<RunGroundTruth> t = LoadRunGroundTruth(*run);
-    if (!t) return t.status();
-    truth = std::move(*t);
-    est_path = (fs::path(options.run) / recording::run_files::kTrajectory).string();
-    gt_path = truth->trajectory_name();
+    if (!t) return t.status().WithContext(run_dir);
+    r.truth = std::move(*t);
+    r.est_path = (fs::path(run_dir) / recording::run_files::kTrajectory).string();
+    r.gt_path = r.truth->trajectory_name();
   }
   // A run on ground-truth poses (`aavio run --gt-poses`) has maps but no trajectory of its own.
-  const bool has_estimate = options.run.empty() || fs::exists(est_path);
+  const bool has_estimate = run_dir.empty() || fs::exists(r.est_path);
   // A run's ground truth is read as its sequence names it (text of any layout, or a bag topic).
   Expected<std::vector<geometry::StampedPose>> gt =
-      truth ? truth->ReadPoses() : io::ReadTrajectory(gt_path, *format);
+      r.truth ? r.truth->ReadPoses() : io::ReadTrajectory(r.gt_path, *format);
   if (!gt) return gt.status();
-  std::optional<TrajectoryEvaluation> e;
   if (has_estimate) {
-    Expected<std::vector<geometry::StampedPose>> est = io::ReadTrajectory(est_path, *format);
+    Expected<std::vector<geometry::StampedPose>> est = io::ReadTrajectory(r.est_path, *format);
     if (!est) return est.status();
-    Expected<TrajectoryEvaluation> evaluated = EvaluateTrajectories(*est, *gt, eval_options);
-    if (!evaluated) return evaluated.status().WithContext(est_path + " vs " + gt_path);
-    e = std::move(*evaluated);
+    Expected<TrajectoryEvaluation> evaluated = EvaluateTrajectories(*est, *gt, *eval_options);
+    if (!evaluated) return evaluated.status().WithContext(r.est_path + " vs " + r.gt_path);
+    r.trajectory = std::move(*evaluated);
   }
-
-  std::optional<eval::DepthErrorSummary> depth;
-  const fs::path run_depth = fs::path(options.run) / recording::run_files::kDepthDir;
-  if (truth && !truth->depth_dir.empty() && fs::exists(run_depth / "timestamps.txt")) {
-    Expected<eval::DepthErrorAccumulator> d = EvaluateRunDepth(run_depth.string(), *truth, *gt);
+  const fs::path run_depth = fs::path(run_dir) / recording::run_files::kDepthDir;
+  if (r.truth && !r.truth->depth_dir.empty() && fs::exists(run_depth / "timestamps.txt")) {
+    Expected<eval::DepthErrorAccumulator> d = EvaluateRunDepth(run_depth.string(), *r.truth, *gt);
     if (!d) return d.status();
-    depth = d->Summary();
+    r.depth = d->Summary();
   }
-  if (!e && !depth) {
-    return NotFound(options.run +
+  if (!r.trajectory && !r.depth) {
+    return NotFound(run_dir +
                     ": holds neither stamped_traj_estimate.txt nor depth maps with "
                     "ground truth to score them against");
   }
+  return r;
+}
+
+nlohmann::json ScoredJson(const Scored& r) {
+  nlohmann::json j =
+      r.trajectory ? TrajectoryEvaluationJson(*r.trajectory) : nlohmann::json::object();
+  if (r.trajectory) j["estimate"] = r.est_path;
+  j["ground_truth"] = r.gt_path;
+  if (r.depth) j["depth"] = DepthJson(*r.depth);
+  return j;
+}
+
+Status Evaluate(const EvalOptions& options, Context& ctx) {
+  const std::string run_dir = options.runs.empty() ? "" : options.runs.front();
+  Expected<Scored> r = Score(options, run_dir);
+  if (!r) return r.status();
   if (options.json) {
-    nlohmann::json j = e ? TrajectoryEvaluationJson(*e) : nlohmann::json::object();
-    if (e) j["estimate"] = est_path;
-    j["ground_truth"] = gt_path;
-    if (depth) j["depth"] = DepthJson(*depth);
-    ctx.out << j.dump(2) << "\n";
+    ctx.out << ScoredJson(*r).dump(2) << "\n";
     return Status::Ok();
   }
-  if (e) {
-    ctx.out << "estimate     " << est_path << "\nground truth " << gt_path << "\n";
-    ctx.out << TrajectoryEvaluationTable(*e);
+  if (r->trajectory) {
+    ctx.out << "estimate     " << r->est_path << "\nground truth " << r->gt_path << "\n";
+    ctx.out << TrajectoryEvaluationTable(*r->trajectory);
   } else {
-    ctx.out << "trajectory: none (a run on the ground-truth poses); depth maps of " << options.run
-            << "/depth against " << truth->depth_dir << "\n";
+    ctx.out << "trajectory: none (a run on the ground-truth poses); depth maps of " << run_dir
+            << "/depth against " << r->truth->depth_dir << "\n";
   }
-  if (depth)
-    ctx.out << DepthTable(*depth);
-  else if (truth && !truth->depth_dir.empty())
+  if (r->depth)
+    ctx.out << DepthTable(*r->depth);
+  else if (r->truth && !r->truth->depth_dir.empty())
     ctx.out << "depth: the run has no depth/ maps (runs from before this version, or mapping "
                "never started)\n";
+  return Status::Ok();
+}
+
+// Several runs: one row each (evo_res's table), in --table's form; --json: one object per run.
+Status EvaluateMany(const EvalOptions& options, Context& ctx) {
+  Expected<TableFormat> table = TableFormatNamed(options.table);
+  if (!table) return table.status().WithContext("--table");
+  const std::vector<std::string> header = {
+      "run",        "ATE [m]",       "ATE [%]",  "rot. [deg] (orient.-aligned)",
+      "RPE t [%]",  "RPE R [deg/m]", "vel. AUC", "depth [%]",
+      "lost ticks", "real time [x]"};
+  std::vector<std::vector<std::string>> rows;
+  nlohmann::json all = nlohmann::json::array();
+  for (std::size_t i = 0; i < options.runs.size(); ++i) {
+    const std::string& dir = options.runs[i];
+    Expected<Scored> r = Score(options, dir);
+    if (!r) return r.status();
+    std::string name = options.names.empty() ? fs::path(dir).filename().string() : options.names[i];
+    if (name.empty()) name = fs::path(dir).parent_path().filename().string();
+    nlohmann::json j = ScoredJson(*r);
+    j["run"] = name;
+    all.push_back(j);
+    std::vector<std::string> row = {name};
+    if (r->trajectory) {
+      const eval::TrajectoryError& a = r->trajectory->absolute;
+      // Orientation-aligned: free of how well each path fixes the alignment's rotation, so
+      // comparable between runs of different paths (docs/evaluation.md §4).
+      const double rotation = a.ate_rotation_rmse_orientation_aligned_deg;
+      row.push_back(StrFormat("%.4f", a.ate_rmse_m));
+      row.push_back(a.path_length_m > 0 ? StrFormat("%.2f", 100.0 * a.ate_rmse_m / a.path_length_m)
+                                        : "");
+      row.push_back(StrFormat("%.3f", rotation));
+      row.push_back(StrFormat("%.2f", r->trajectory->relative.trans_pct_rmse));
+      row.push_back(StrFormat("%.3f", r->trajectory->relative.rot_deg_per_m_rmse));
+      row.push_back(
+          r->trajectory->velocity.pairs > 0 ? StrFormat("%.3f", r->trajectory->velocity.auc) : "");
+    } else {
+      row.insert(row.end(), 6, "");
+    }
+    row.push_back(r->depth ? StrFormat("%.2f", 100.0 * r->depth->relative) : "");
+    const nlohmann::json& s = r->summary;
+    row.push_back(s.contains("status") && s["status"].is_object()
+                      ? std::to_string(s["status"].value("lost", 0LL))
+                      : "");
+    row.push_back(s.contains("real_time_factor") && s["real_time_factor"].is_number()
+                      ? StrFormat("%.2f", s["real_time_factor"].get<double>())
+                      : "");
+    rows.push_back(std::move(row));
+  }
+  if (options.json) {
+    ctx.out << all.dump(2) << "\n";
+    return Status::Ok();
+  }
+  ctx.out << FormatTable(header, rows, *table);
   return Status::Ok();
 }
 
@@ -126,9 +208,12 @@ void RegisterEval(CLI::App& app, Context& ctx) {
                   "auto (told from each file), tum (stamps in s), tum_ns (in ns), euroc (CSV, "
                   "ns, w-first quaternion) or evslam (TUM + velocity)")
       ->capture_default_str();
-  sub->add_option("--run", options->run,
+  sub->add_option("--run", options->runs,
                   "A run folder of `aavio run`: its trajectory and depth maps against the ground "
-                  "truth its sequence names");
+                  "truth its sequence names (repeat: one table of all, see --table)");
+  sub->add_option("--name", options->names, "With several --run: a label per run");
+  sub->add_option("--table", options->table, "With several --run: md, csv or latex")
+      ->capture_default_str();
   sub->add_option("--sequence", options->sequence,
                   "With --run: the sequence, if it moved since the run");
   sub->add_option("--calib", options->calibration,
@@ -153,12 +238,23 @@ void RegisterEval(CLI::App& app, Context& ctx) {
   sub->callback([&ctx, options] {
     ctx.action = [&ctx, options] {
       const bool pair = !options->est.empty() || !options->gt.empty();
-      if (pair == !options->run.empty() ||
+      if (pair == !options->runs.empty() ||
           (pair && (options->est.empty() || options->gt.empty()))) {
-        ctx.err << "aavio eval: give either --est TRAJ --gt TRAJ, or --run DIR\n";
+        ctx.err << "aavio eval: give either --est TRAJ --gt TRAJ, or --run DIR (repeatable)\n";
         return static_cast<int>(kExitUsage);
       }
-      const Status status = Evaluate(*options, ctx);
+      if (!options->names.empty() && options->names.size() != options->runs.size()) {
+        ctx.err << "aavio eval: --name given " << options->names.size() << " times for "
+                << options->runs.size() << " --run folders; give one per run or none\n";
+        return static_cast<int>(kExitUsage);
+      }
+      if (options->runs.size() > 1 && !options->sequence.empty()) {
+        ctx.err << "aavio eval: --sequence names one run's sequence; with several --run, "
+                   "evaluate the moved one on its own\n";
+        return static_cast<int>(kExitUsage);
+      }
+      const Status status =
+          options->runs.size() > 1 ? EvaluateMany(*options, ctx) : Evaluate(*options, ctx);
       if (status.ok()) return static_cast<int>(kExitOk);
       ctx.err << "aavio eval: error: " << status.message() << "\n";
       return static_cast<int>(kExitError);

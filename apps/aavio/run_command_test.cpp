@@ -394,6 +394,17 @@ TEST(Cli, EvalScoresABagRunWithItsCalibrationAndTheBagsPoses) {
   r = RunAavio(
       {"eval", "--est", file, "--gt", (std::filesystem::path(seq) / "groundtruth.txt").string()});
   EXPECT_EQ(r.code, kExitOk) << r.err;
+  // Both runs in one table (evo_res's), as CSV: a row each, the same ATE (same data, same seed).
+  r = RunAavio({"eval", "--run", out, "--run", evslam, "--calib", moved.string(), "--name", "one",
+                "--name", "two", "--table", "csv"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  EXPECT_EQ(r.out.find("run,ATE [m],ATE [%]"), 0u) << r.out;
+  const std::size_t one = r.out.find("\none,"), two = r.out.find("\ntwo,");
+  ASSERT_NE(one, std::string::npos) << r.out;
+  ASSERT_NE(two, std::string::npos) << r.out;
+  EXPECT_EQ(r.out.substr(one + 5, 7), r.out.substr(two + 5, 7)) << r.out;
+  r = RunAavio({"eval", "--run", out, "--run", evslam, "--name", "one"});
+  EXPECT_EQ(r.code, kExitUsage);
   r = RunAavio(
       {"run", bag, "--calib", moved.string(), "--out", evslam, "--overwrite", "--format", "g2o"});
   EXPECT_EQ(r.code, kExitUsage);
