@@ -40,6 +40,27 @@ std::size_t SplitFields(std::string_view line, std::array<std::string_view, N>* 
   return count;
 }
 
+/// The lines of a text, one by one, with their 1-based numbers (for "file:line" messages).
+class Lines {
+ public:
+  explicit Lines(std::string_view text) : text_(text) {}
+  /// The next line (without its '\n'); false at the end.
+  bool Next(std::string_view* line) {
+    if (begin_ >= text_.size()) return false;
+    std::size_t end = text_.find('\n', begin_);
+    if (end == std::string_view::npos) end = text_.size();
+    *line = text_.substr(begin_, end - begin_);
+    begin_ = end + 1;
+    ++number_;
+    return true;
+  }
+  std::size_t number() const { return number_; }  ///< of the line Next gave last
+
+ private:
+  std::string_view text_;
+  std::size_t begin_ = 0, number_ = 0;
+};
+
 /// The whole field as a number of type T.
 template <typename T>
 bool ParseNumber(std::string_view text, T* value) {

@@ -1,5 +1,6 @@
 #include "aavio/io/trajectory_io.hpp"
 
+#include <Eigen/SVD>
 #include <algorithm>
 #include <array>
 #include <charconv>
@@ -25,6 +26,8 @@ const char* TrajectoryFormatName(TrajectoryFormat format) {
       return "euroc";
     case TrajectoryFormat::kEvslam:
       return "evslam";
+    case TrajectoryFormat::kKitti:
+      return "kitti";
   }
   return "?";
 }
@@ -37,7 +40,7 @@ Expected<TrajectoryFormat> TrajectoryFormatNamed(const std::string& name) {
   }
   return InvalidArgument(
       "trajectory format '" + name +
-      "' is none of auto, tum (seconds), tum_ns (nanosecond stamps), euroc, evslam");
+      "' is none of auto, tum (seconds), tum_ns (nanosecond stamps), euroc, evslam, kitti");
 }
 
 namespace {
@@ -52,14 +55,11 @@ bool IsInteger(std::string_view f) {
 
 // The layout of a trajectory's text, told from its header and data (TrajectoryFormat::kAuto).
 Expected<TrajectoryFormat> DetectFormat(const std::string& text, const std::string& origin) {
-  std::size_t begin = 0;
   bool euroc_header = false;
   std::vector<std::string_view> stamps;
-  while (begin < text.size() && stamps.size() < 50) {
-    std::size_t end = text.find('\n', begin);
-    if (end == std::string::npos) end = text.size();
-    const std::string_view line(text.data() + begin, end - begin);
-    begin = end + 1;
+  text::Lines lines(text);
+  std::string_view line;
+  while (stamps.size() < 50 && lines.Next(&line)) {
     if (IsSkipped(line)) {
       euroc_header = euroc_header || line.find("q_RS_w") != std::string_view::npos ||
                      line.find("[ns]") != std::string_view::npos;
@@ -67,11 +67,7 @@ Expected<TrajectoryFormat> DetectFormat(const std::string& text, const std::stri
     }
     std::array<std::string_view, 20> f;
     const std::size_t n = SplitFields(line, &f);
-    if (stamps.empty() && n == 12) {
-      return InvalidArgument(origin +
-                             ": 12 columns, a KITTI pose file: it has no timestamps to pair "
-                             "poses by; give a TUM or EuRoC file (t, position, quaternion)");
-    }
+    if (stamps.empty() && n == 12) return TrajectoryFormat::kKitti;
     // EvSLAM: TUM and a velocity, 11 columns with stamps in seconds; EuRoC's are integers.
     if (stamps.empty() && n == 11 && !euroc_header && !IsInteger(f[0]))
       return TrajectoryFormat::kEvslam;
@@ -93,18 +89,90 @@ Expected<TrajectoryFormat> DetectFormat(const std::string& text, const std::stri
   return ns ? TrajectoryFormat::kTumNs : TrajectoryFormat::kTum;
 }
 
+// KITTI: the 3×4 [R|t] row by row per line; the stamps come from elsewhere (times.txt).
+Expected<std::vector<geometry::StampedPose>> ParseKitti(const std::string& text,
+                                                        const std::string& origin,
+                                                        const std::vector<TimeNs>& stamps) {
+  std::vector<geometry::StampedPose> poses;
+  text::Lines lines(text);
+  std::string_view line;
+  while (lines.Next(&line)) {
+    if (IsSkipped(line)) continue;
+    const std::string where = origin + ":" + std::to_string(lines.number());
+    std::array<std::string_view, 12> f;
+    const std::size_t count = SplitFields(line, &f);
+    if (count != 12) {
+      return ParseError(where +
+                        ": expected 12 columns (KITTI: the 3x4 matrix [R|t] row by row), "
+                        "found " +
+                        std::to_string(count) + ": '" + PrintableExcerpt(line) + "'");
+    }
+    std::array<double, 12> m{};
+    for (std::size_t k = 0; k < 12; ++k) {
+      if (!ParseNumber(f[k], &m[k]) || !std::isfinite(m[k]))
+        return ParseError(where + ": column " + std::to_string(k + 1) + " = '" +
+                          PrintableExcerpt(f[k], 40) + "' is not a finite number");
+    }
+    Eigen::Matrix3d R;
+    R << m[0], m[1], m[2], m[4], m[5], m[6], m[8], m[9], m[10];
+    if (!((R.transpose() * R - Eigen::Matrix3d::Identity()).norm() <= 0.01 && R.determinant() > 0))
+      return ParseError(where + ": the 3x3 part is not a rotation (is this a KITTI pose file?)");
+    if (stamps.empty()) {  // paired line by line: KITTI's 10 Hz
+      geometry::StampedPose pose;
+      pose.t_ns = static_cast<TimeNs>(poses.size()) * 100 * kNsPerMs;
+      const Eigen::JacobiSVD<Eigen::Matrix3d> svd(R, Eigen::ComputeFullU | Eigen::ComputeFullV);
+      pose.T_world_body = {svd.matrixU() * svd.matrixV().transpose(),
+                           Eigen::Vector3d(m[3], m[7], m[11])};
+      poses.push_back(pose);
+      continue;
+    }
+    if (poses.size() == stamps.size()) {
+      return InvalidArgument(origin + ": more poses than the " + std::to_string(stamps.size()) +
+                             " stamps given for it (--times): the two files must have a line "
+                             "for each other");
+    }
+    const Eigen::JacobiSVD<Eigen::Matrix3d> svd(R, Eigen::ComputeFullU | Eigen::ComputeFullV);
+    geometry::StampedPose pose;
+    pose.t_ns = stamps[poses.size()];
+    pose.T_world_body = {svd.matrixU() * svd.matrixV().transpose(),
+                         Eigen::Vector3d(m[3], m[7], m[11])};
+    poses.push_back(pose);
+  }
+  if (!stamps.empty() && poses.size() != stamps.size()) {
+    return InvalidArgument(origin + ": " + std::to_string(poses.size()) + " poses but " +
+                           std::to_string(stamps.size()) +
+                           " stamps given for it (--times): the two files must have a line for "
+                           "each other");
+  }
+  return poses;
+}
+
 }  // namespace
 
-Expected<std::vector<geometry::StampedPose>> ParseTrajectory(const std::string& text,
-                                                             const std::string& origin,
-                                                             TrajectoryFormat format) {
+Expected<TrajectoryFile> ParseTrajectoryFile(const std::string& text, const std::string& origin,
+                                             TrajectoryFormat format,
+                                             const std::vector<TimeNs>* kitti_stamps) {
   if (format == TrajectoryFormat::kAuto) {
     Expected<TrajectoryFormat> detected = DetectFormat(text, origin);
     if (!detected) return detected.status();
     format = *detected;
   }
+  TrajectoryFile file;
+  file.format = format;
+  if (format == TrajectoryFormat::kKitti) {
+    if (!kitti_stamps) {
+      return InvalidArgument(origin +
+                             ": a KITTI pose file (12 columns) has no timestamps; give its "
+                             "times.txt with --times (or two KITTI files of equal length, paired "
+                             "line by line)");
+    }
+    Expected<std::vector<geometry::StampedPose>> poses = ParseKitti(text, origin, *kitti_stamps);
+    if (!poses) return poses.status();
+    file.poses = std::move(*poses);
+    return file;
+  }
   // Columns: TUM t x y z qx qy qz qw; EuRoC t[ns] x y z qw qx qy qz (and more after).
-  // EvSLAM: TUM's columns, then vx vy vz (not read here).
+  // EvSLAM: TUM's columns, then vx vy vz (body frame).
   const bool euroc = format == TrajectoryFormat::kEuroc;
   const bool evslam = format == TrajectoryFormat::kEvslam;
   const bool ns_stamps = euroc || format == TrajectoryFormat::kTumNs;
@@ -112,19 +180,15 @@ Expected<std::vector<geometry::StampedPose>> ParseTrajectory(const std::string& 
   const char* layout = euroc    ? "'timestamp[ns], x, y, z, qw, qx, qy, qz' (EuRoC)"
                        : evslam ? "'timestamp tx ty tz qx qy qz qw vx vy vz' (EvSLAM)"
                                 : "'timestamp tx ty tz qx qy qz qw' (TUM)";
-  std::vector<geometry::StampedPose> poses;
-  std::size_t line_number = 0;
+  std::vector<geometry::StampedPose>& poses = file.poses;
   std::size_t previous_line = 0;
-  std::size_t begin = 0;
-  while (begin < text.size()) {
-    std::size_t end = text.find('\n', begin);
-    if (end == std::string::npos) end = text.size();
-    const std::string_view line(text.data() + begin, end - begin);
-    begin = end + 1;
-    ++line_number;
+  text::Lines lines(text);
+  std::string_view line;
+  while (lines.Next(&line)) {
+    const std::size_t line_number = lines.number();
     if (IsSkipped(line)) continue;
     const std::string where = origin + ":" + std::to_string(line_number);
-    std::array<std::string_view, 8> fields;
+    std::array<std::string_view, 11> fields;
     const std::size_t count = SplitFields(line, &fields);
     if (euroc ? count < 8 : count != columns) {
       return ParseError(where + ": expected " + (euroc ? "at least " : "") +
@@ -176,8 +240,38 @@ Expected<std::vector<geometry::StampedPose>> ParseTrajectory(const std::string& 
     pose.T_world_body = {q.normalized().toRotationMatrix(), Eigen::Vector3d(v[0], v[1], v[2])};
     poses.push_back(pose);
     previous_line = line_number;
+    if (evslam) {
+      Eigen::Vector3d velocity;
+      for (int k = 0; k < 3; ++k) {
+        if (!ParseNumber(fields[8 + k], &velocity[k]) || !std::isfinite(velocity[k]))
+          return ParseError(where + ": v" + std::string(1, "xyz"[k]) + " = '" +
+                            PrintableExcerpt(fields[8 + k], 40) + "' is not a finite number");
+      }
+      file.v_body_mps.push_back(velocity);
+    }
   }
-  return poses;
+  return file;
+}
+
+Expected<std::vector<geometry::StampedPose>> ParseTrajectory(const std::string& text,
+                                                             const std::string& origin,
+                                                             TrajectoryFormat format) {
+  Expected<TrajectoryFile> file = ParseTrajectoryFile(text, origin, format, nullptr);
+  if (!file) return file.status();
+  return std::move(file->poses);
+}
+
+Expected<TrajectoryFile> ReadTrajectoryFile(const std::string& path, TrajectoryFormat format,
+                                            const std::vector<TimeNs>* kitti_stamps) {
+  Expected<std::string> text = ReadBoundedFile(path, kMaxTrajectoryFileBytes, "trajectory file");
+  if (!text) return text.status();
+  return ParseTrajectoryFile(*text, path, format, kitti_stamps);
+}
+
+Expected<TrajectoryFormat> DetectTrajectoryFormat(const std::string& path) {
+  Expected<std::string> text = ReadBoundedFile(path, kMaxTrajectoryFileBytes, "trajectory file");
+  if (!text) return text.status();
+  return DetectFormat(*text, path);
 }
 
 Expected<std::vector<geometry::StampedPose>> ParseTumTrajectory(const std::string& text,

@@ -24,12 +24,30 @@ Expected<std::vector<geometry::StampedPose>> ParseTumTrajectory(const std::strin
 /// state_groundtruth_estimate0 files' velocity and bias columns after it are ignored). kAuto
 /// tells them apart from the data: a `[ns]` or `q_RS_w` header line, or 11 and more columns, is
 /// EuRoC; integer stamps that are epoch-sized (from 10^12) or step by 1000 and more are
-/// nanoseconds. KITTI's 12-column files have no timestamps and are refused by name.
-/// EvSLAM's `t tx ty tz qx qy qz qw vx vy vz` (seconds; 11 columns with a non-integer stamp) is
-/// read for its poses (kEvslam).
-enum class TrajectoryFormat { kAuto, kTum, kTumNs, kEuroc, kEvslam };
+/// nanoseconds; 12 columns is KITTI.
+/// EvSLAM's `t tx ty tz qx qy qz qw vx vy vz` (seconds; 11 columns with a non-integer stamp;
+/// kEvslam) also gives the body-frame velocity. KITTI (kKitti, 12 columns: [R|t] row by row) has
+/// no stamps: they are given beside it (its times.txt).
+enum class TrajectoryFormat { kAuto, kTum, kTumNs, kEuroc, kEvslam, kKitti };
 const char* TrajectoryFormatName(TrajectoryFormat format);
 Expected<TrajectoryFormat> TrajectoryFormatNamed(const std::string& name);
+
+/// A trajectory file read whole: the layout it had, its poses, and EvSLAM's velocities (one per
+/// pose; empty for the other layouts).
+struct TrajectoryFile {
+  TrajectoryFormat format = TrajectoryFormat::kTum;
+  std::vector<geometry::StampedPose> poses;
+  std::vector<Eigen::Vector3d> v_body_mps;
+};
+/// `kitti_stamps`: the stamps of a KITTI file's lines, one per pose; empty: line i at i × 0.1 s
+/// (two KITTI files paired line by line); null: a KITTI file is an error that says to give them.
+Expected<TrajectoryFile> ReadTrajectoryFile(const std::string& path, TrajectoryFormat format,
+                                            const std::vector<TimeNs>* kitti_stamps = nullptr);
+Expected<TrajectoryFile> ParseTrajectoryFile(const std::string& text, const std::string& origin,
+                                             TrajectoryFormat format,
+                                             const std::vector<TimeNs>* kitti_stamps = nullptr);
+/// The layout of a trajectory file, told from its data (kAuto's rules).
+Expected<TrajectoryFormat> DetectTrajectoryFormat(const std::string& path);
 
 /// Reads a trajectory of `format` (the TUM reader's rules: exact stamps, quaternions within 1 %
 /// of unit norm, strictly increasing stamps, "file:line: what; fix" errors).

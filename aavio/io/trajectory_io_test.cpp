@@ -123,13 +123,46 @@ TEST(Trajectory, FormatsAreToldApartFromTheData) {
                 0.0, 1e-5);
     EXPECT_EQ((*forced)[1].t_ns, (*auto_read)[1].t_ns);
   }
-  // KITTI has no stamps; a name that is no format is said with the list.
-  const Status kitti =
-      ParseTrajectory("1 0 0 0 0 1 0 0 0 0 1 0\n", "k.txt", TrajectoryFormat::kAuto).status();
-  EXPECT_NE(kitti.message().find("k.txt: 12 columns, a KITTI pose file: it has no timestamps"),
+  // KITTI has no stamps: they come beside it, or line by line; a name that is no format is said
+  // with the list.
+  const std::string kitti = "1 0 0 0 0 1 0 0 0 0 1 0\n0 -1 0 1.5 1 0 0 0 0 0 1 0\n";
+  const Status no_stamps = ParseTrajectory(kitti, "k.txt", TrajectoryFormat::kAuto).status();
+  EXPECT_NE(no_stamps.message().find("k.txt: a KITTI pose file (12 columns) has no timestamps; "
+                                     "give its times.txt with --times"),
             std::string::npos)
-      << kitti.message();
-  EXPECT_NE(TrajectoryFormatNamed("kitti").status().message().find("none of auto, tum"),
+      << no_stamps.message();
+  const std::vector<TimeNs> stamps = {1'000'000'000, 1'100'000'000};
+  Expected<TrajectoryFile> with_stamps =
+      ParseTrajectoryFile(kitti, "k.txt", TrajectoryFormat::kAuto, &stamps);
+  ASSERT_TRUE(with_stamps.ok()) << with_stamps.status().message();
+  EXPECT_EQ(with_stamps->format, TrajectoryFormat::kKitti);
+  EXPECT_EQ(with_stamps->poses[1].t_ns, 1'100'000'000);
+  EXPECT_NEAR(with_stamps->poses[1].T_world_body.t.x(), 1.5, 1e-12);
+  EXPECT_NEAR(with_stamps->poses[1].T_world_body.R(1, 0), 1.0, 1e-12);
+  const std::vector<TimeNs> by_line;
+  EXPECT_EQ(ParseTrajectoryFile(kitti, "k.txt", TrajectoryFormat::kKitti, &by_line)->poses[1].t_ns,
+            100'000'000);
+  const std::vector<TimeNs> one = {5};
+  EXPECT_NE(ParseTrajectoryFile(kitti, "k.txt", TrajectoryFormat::kKitti, &one)
+                .status()
+                .message()
+                .find("more poses than the 1 stamps"),
+            std::string::npos);
+  EXPECT_NE(
+      ParseTrajectoryFile("2 0 0 0 0 1 0 0 0 0 1 0\n", "k.txt", TrajectoryFormat::kKitti, &by_line)
+          .status()
+          .message()
+          .find("not a rotation"),
+      std::string::npos);
+  // EvSLAM gives a velocity per pose.
+  Expected<TrajectoryFile> evslam =
+      ParseTrajectoryFile("0.5 1 2 3 0 0 0 1 0.1 0.2 0.3\n0.6 1 2 3 0 0 0 1 0.1 0.2 0.4\n", "e.txt",
+                          TrajectoryFormat::kAuto);
+  ASSERT_TRUE(evslam.ok()) << evslam.status().message();
+  EXPECT_EQ(evslam->format, TrajectoryFormat::kEvslam);
+  ASSERT_EQ(evslam->v_body_mps.size(), 2u);
+  EXPECT_DOUBLE_EQ(evslam->v_body_mps[1].z(), 0.4);
+  EXPECT_NE(TrajectoryFormatNamed("g2o").status().message().find("none of auto, tum"),
             std::string::npos);
   EXPECT_EQ(*TrajectoryFormatNamed("euroc"), TrajectoryFormat::kEuroc);
 }

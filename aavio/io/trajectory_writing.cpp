@@ -119,13 +119,9 @@ Expected<std::vector<TimeNs>> ReadStamps(const std::string& path) {
   std::vector<std::string> fields;
   std::vector<std::size_t> lines;
   bool euroc_header = false;
-  std::size_t begin = 0, line_number = 0;
-  while (begin < text->size()) {
-    std::size_t end = text->find('\n', begin);
-    if (end == std::string::npos) end = text->size();
-    const std::string_view line(text->data() + begin, end - begin);
-    begin = end + 1;
-    ++line_number;
+  text::Lines text_lines(*text);
+  std::string_view line;
+  while (text_lines.Next(&line)) {
     if (text::IsSkipped(line)) {
       euroc_header = euroc_header || line.find("[ns]") != std::string_view::npos;
       continue;
@@ -133,7 +129,7 @@ Expected<std::vector<TimeNs>> ReadStamps(const std::string& path) {
     std::array<std::string_view, 1> f;
     text::SplitFields(line, &f);
     fields.emplace_back(f[0]);
-    lines.push_back(line_number);
+    lines.push_back(text_lines.number());
   }
   if (fields.empty()) return ParseError(path + ": no stamps (one per line, first column)");
   // Nanoseconds: integers, epoch-sized or stepping by 1000 and more (or a EuRoC [ns] header).

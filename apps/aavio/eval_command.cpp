@@ -33,7 +33,7 @@ using recording::TrajectoryEvaluationTable;
 namespace fs = std::filesystem;
 
 struct EvalOptions {
-  std::string est, gt, sequence, calibration;
+  std::string est, gt, sequence, calibration, times;
   std::vector<std::string> runs, names;
   std::string align = "se3";
   std::string format = "auto";  // of --est and --gt
@@ -65,6 +65,20 @@ Expected<TrajectoryEvalOptions> TrajectoryOptions(const EvalOptions& options) {
   return eval_options;
 }
 
+// The velocities a file gives (EvSLAM's linear velocity; the angular one derived from its poses),
+// or none.
+std::vector<geometry::StampedVelocity> GivenVelocities(const io::TrajectoryFile& file,
+                                                       TimeNs half_window_ns) {
+  if (file.v_body_mps.size() != file.poses.size() || file.poses.empty()) return {};
+  std::vector<geometry::StampedVelocity> v =
+      geometry::EstimateVelocities(file.poses, half_window_ns);
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    v[i].v_body_mps = file.v_body_mps[i];
+    v[i].valid = true;
+  }
+  return v;
+}
+
 Expected<Scored> Score(const EvalOptions& options, const std::string& run_dir) {
   Expected<TrajectoryEvalOptions> eval_options = TrajectoryOptions(options);
   if (!eval_options) return eval_options.status();
@@ -85,20 +99,56 @@ Expected<Scored> Score(const EvalOptions& options, const std::string& run_dir) {
   }
   // A run on ground-truth poses (`aavio run --gt-poses`) has maps but no trajectory of its own.
   const bool has_estimate = run_dir.empty() || fs::exists(r.est_path);
+  // KITTI files take their stamps from --times; two KITTI files without it pair line by line.
+  std::optional<std::vector<TimeNs>> kitti_stamps;
+  if (!options.times.empty()) {
+    Expected<std::vector<TimeNs>> times = io::ReadStamps(options.times);
+    if (!times) return times.status().WithContext("--times");
+    kitti_stamps = std::move(*times);
+  } else if (run_dir.empty()) {
+    auto is_kitti = [&](const std::string& path) {
+      if (*format != io::TrajectoryFormat::kAuto) return *format == io::TrajectoryFormat::kKitti;
+      Expected<io::TrajectoryFormat> f = io::DetectTrajectoryFormat(path);
+      return f.ok() && *f == io::TrajectoryFormat::kKitti;
+    };
+    if (is_kitti(r.est_path) && is_kitti(r.gt_path)) kitti_stamps.emplace();
+  }
+  const std::vector<TimeNs>* stamps = kitti_stamps ? &*kitti_stamps : nullptr;
   // A run's ground truth is read as its sequence names it (text of any layout, or a bag topic).
-  Expected<std::vector<geometry::StampedPose>> gt =
-      r.truth ? r.truth->ReadPoses() : io::ReadTrajectory(r.gt_path, *format);
-  if (!gt) return gt.status();
+  io::TrajectoryFile gt;
+  if (r.truth) {
+    Expected<std::vector<geometry::StampedPose>> poses = r.truth->ReadPoses();
+    if (!poses) return poses.status();
+    gt.poses = std::move(*poses);
+  } else {
+    Expected<io::TrajectoryFile> read = io::ReadTrajectoryFile(r.gt_path, *format, stamps);
+    if (!read) return read.status();
+    gt = std::move(*read);
+  }
   if (has_estimate) {
-    Expected<std::vector<geometry::StampedPose>> est = io::ReadTrajectory(r.est_path, *format);
+    Expected<io::TrajectoryFile> est = io::ReadTrajectoryFile(r.est_path, *format, stamps);
     if (!est) return est.status();
-    Expected<TrajectoryEvaluation> evaluated = EvaluateTrajectories(*est, *gt, *eval_options);
+    if (est->format == io::TrajectoryFormat::kKitti && gt.format == io::TrajectoryFormat::kKitti &&
+        stamps && stamps->empty() && est->poses.size() != gt.poses.size()) {
+      return InvalidArgument(StrFormat(
+          "%s has %zu poses and %s %zu: KITTI files without --times pair line by line, so they "
+          "must be the same length (give the sequence's times.txt with --times)",
+          r.est_path.c_str(), est->poses.size(), r.gt_path.c_str(), gt.poses.size()));
+    }
+    const std::vector<geometry::StampedVelocity> est_v =
+        GivenVelocities(*est, eval_options->velocity_half_window_ns);
+    const std::vector<geometry::StampedVelocity> gt_v =
+        GivenVelocities(gt, eval_options->velocity_half_window_ns);
+    Expected<TrajectoryEvaluation> evaluated =
+        EvaluateTrajectories(est->poses, gt.poses, *eval_options, est_v.empty() ? nullptr : &est_v,
+                             gt_v.empty() ? nullptr : &gt_v);
     if (!evaluated) return evaluated.status().WithContext(r.est_path + " vs " + r.gt_path);
     r.trajectory = std::move(*evaluated);
   }
   const fs::path run_depth = fs::path(run_dir) / recording::run_files::kDepthDir;
   if (r.truth && !r.truth->depth_dir.empty() && fs::exists(run_depth / "timestamps.txt")) {
-    Expected<eval::DepthErrorAccumulator> d = EvaluateRunDepth(run_depth.string(), *r.truth, *gt);
+    Expected<eval::DepthErrorAccumulator> d =
+        EvaluateRunDepth(run_depth.string(), *r.truth, gt.poses);
     if (!d) return d.status();
     r.depth = d->Summary();
   }
@@ -202,12 +252,15 @@ void RegisterEval(CLI::App& app, Context& ctx) {
   auto options = std::make_shared<EvalOptions>();
   CLI::App* sub = app.add_subcommand(
       "eval", "Trajectory accuracy (ATE, RPE) of an estimate, or of a run with its depth accuracy");
-  sub->add_option("--est", options->est, "Estimated trajectory (TUM or EuRoC)");
-  sub->add_option("--gt", options->gt, "Ground-truth trajectory (TUM or EuRoC), same clock");
+  sub->add_option("--est", options->est, "Estimated trajectory (TUM, EuRoC, EvSLAM or KITTI)");
+  sub->add_option("--gt", options->gt, "Ground-truth trajectory (same layouts), same clock");
   sub->add_option("--format", options->format,
                   "auto (told from each file), tum (stamps in s), tum_ns (in ns), euroc (CSV, "
-                  "ns, w-first quaternion) or evslam (TUM + velocity)")
+                  "ns, w-first quaternion), evslam (TUM + velocity) or kitti (3x4 rows, --times)")
       ->capture_default_str();
+  sub->add_option("--times", options->times,
+                  "KITTI files' stamps (their times.txt, s); without it two KITTI files pair line "
+                  "by line");
   sub->add_option("--run", options->runs,
                   "A run folder of `aavio run`: its trajectory and depth maps against the ground "
                   "truth its sequence names (repeat: one table of all, see --table)");

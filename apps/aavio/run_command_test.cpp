@@ -391,9 +391,26 @@ TEST(Cli, EvalScoresABagRunWithItsCalibrationAndTheBagsPoses) {
   const std::string written = ReadAll(file);
   EXPECT_EQ(std::count(written.begin(), written.end(), '\n'),
             motion["poses_at"]["written"].get<int>() + 1);  // + the header
+  const std::string gt_path = (std::filesystem::path(seq) / "groundtruth.txt").string();
+  r = RunAavio({"eval", "--est", file, "--gt", gt_path, "--json"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  // The file's own velocities are scored.
+  EXPECT_EQ(nlohmann::json::parse(r.out)["velocity"]["estimate"], "given") << r.out;
+  // KITTI out and in: with its times file the same score as the run's own TUM trajectory.
+  const std::string kitti = (dir / "kitti").string();
   r = RunAavio(
-      {"eval", "--est", file, "--gt", (std::filesystem::path(seq) / "groundtruth.txt").string()});
-  EXPECT_EQ(r.code, kExitOk) << r.err;
+      {"run", bag, "--calib", moved.string(), "--out", kitti, "--quiet", "--format", "kitti"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  const auto kitti_dir = std::filesystem::path(kitti);
+  r = RunAavio({"eval", "--est", (kitti_dir / "trajectory_kitti.txt").string(), "--gt", gt_path,
+                "--times", (kitti_dir / "trajectory_kitti_times.txt").string(), "--json"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  std::ifstream kitti_in(kitti_dir / "summary.json");
+  EXPECT_NEAR(nlohmann::json::parse(r.out)["ate_rmse_m"].get<double>(),
+              nlohmann::json::parse(kitti_in)["accuracy"]["ate_rmse_m"].get<double>(), 1e-6);
+  r = RunAavio({"eval", "--est", (kitti_dir / "trajectory_kitti.txt").string(), "--gt", gt_path});
+  EXPECT_EQ(r.code, kExitError);
+  EXPECT_NE(r.err.find("give its times.txt with --times"), std::string::npos) << r.err;
   // Both runs in one table (evo_res's), as CSV: a row each, the same ATE (same data, same seed).
   r = RunAavio({"eval", "--run", out, "--run", evslam, "--calib", moved.string(), "--name", "one",
                 "--name", "two", "--table", "csv"});
