@@ -28,6 +28,43 @@ std::vector<int> Segments(const std::vector<StampedPose>& poses, TimeNs median) 
   return segment;
 }
 
+// Local quadratic fits over poses[a, b) in dt = t_j − t_i (a line with two poses, or when not
+// allowed): position p(dt)
+// = c0 + v·dt + ½a·dt² in the world, rotation log(R_iᵀ·R_j) = ω·dt + ½α·dt² in the body frame;
+// the velocities are the linear coefficients at dt = 0.
+StampedVelocity Fit(const std::vector<StampedPose>& poses, std::size_t a, std::size_t b,
+                    std::size_t i, bool allow_quadratic) {
+  StampedVelocity out;
+  out.t_ns = poses[i].t_ns;
+  if (b - a < 2) return out;
+  const RigidTransform& Ti = poses[i].T_world_body;
+  const bool quadratic = allow_quadratic && b - a >= 3;
+  Eigen::Matrix3d A = Eigen::Matrix3d::Zero();   // normal equations of [1, dt, dt²]
+  Eigen::Matrix3d Bp = Eigen::Matrix3d::Zero();  // rows: Σ basis·pᵀ
+  Eigen::Matrix2d C = Eigen::Matrix2d::Zero();   // of [dt, dt²] (through the origin)
+  Eigen::Matrix<double, 2, 3> Bw = Eigen::Matrix<double, 2, 3>::Zero();
+  for (std::size_t j = a; j < b; ++j) {
+    const double dt = 1e-9 * static_cast<double>(poses[j].t_ns - poses[i].t_ns);
+    const Eigen::Vector3d basis(1.0, dt, quadratic ? dt * dt : 0.0);
+    A += basis * basis.transpose();
+    Bp += basis * (poses[j].T_world_body.t - Ti.t).transpose();
+    const Eigen::Vector2d rb(dt, quadratic ? dt * dt : 0.0);
+    C += rb * rb.transpose();
+    Bw += rb * LogSO3(Ti.R.transpose() * poses[j].T_world_body.R).transpose();
+  }
+  if (!quadratic) {  // two poses: a line, and ω through the origin
+    A(2, 2) = 1.0;
+    C(1, 1) = 1.0;
+  }
+  const Eigen::Matrix3d cp = A.ldlt().solve(Bp);
+  const Eigen::Matrix<double, 2, 3> cw = C.ldlt().solve(Bw);
+  if (!cp.allFinite() || !cw.allFinite()) return out;
+  out.v_body_mps = Ti.R.transpose() * cp.row(1).transpose();
+  out.w_body_radps = cw.row(0).transpose();
+  out.valid = true;
+  return out;
+}
+
 }  // namespace
 
 std::vector<StampedVelocity> EstimateVelocities(const std::vector<StampedPose>& poses,
@@ -47,37 +84,22 @@ std::vector<StampedVelocity> EstimateVelocities(const std::vector<StampedPose>& 
     std::size_t a = lo, b = hi;
     if (a == i && a > 0 && segment[a - 1] == segment[i]) --a;
     if (b == i + 1 && b < poses.size() && segment[b] == segment[i]) ++b;
-    if (b - a < 2) continue;
-    // Local quadratic fits in dt = t_j − t_i (a line with two poses): position p(dt) = c0 + v·dt
-    // + ½a·dt² in the world, rotation log(R_iᵀ·R_j) = ω·dt + ½α·dt² in the body frame; the
-    // velocities are the linear coefficients at dt = 0.
-    const RigidTransform& Ti = poses[i].T_world_body;
-    const bool quadratic = b - a >= 3;
-    Eigen::Matrix3d A = Eigen::Matrix3d::Zero();               // normal equations of [1, dt, dt²]
-    Eigen::Matrix<double, 3, 3> Bp = Eigen::Matrix3d::Zero();  // rows: Σ basis·pᵀ
-    Eigen::Matrix2d C = Eigen::Matrix2d::Zero();               // of [dt, dt²] (through the origin)
-    Eigen::Matrix<double, 2, 3> Bw = Eigen::Matrix<double, 2, 3>::Zero();
-    for (std::size_t j = a; j < b; ++j) {
-      const double dt = 1e-9 * static_cast<double>(poses[j].t_ns - poses[i].t_ns);
-      const Eigen::Vector3d basis(1.0, dt, quadratic ? dt * dt : 0.0);
-      A += basis * basis.transpose();
-      Bp += basis * (poses[j].T_world_body.t - Ti.t).transpose();
-      const Eigen::Vector2d rb(dt, quadratic ? dt * dt : 0.0);
-      C += rb * rb.transpose();
-      Bw += rb * LogSO3(Ti.R.transpose() * poses[j].T_world_body.R).transpose();
-    }
-    if (!quadratic) {  // two poses: a line, and ω through the origin
-      A(2, 2) = 1.0;
-      C(1, 1) = 1.0;
-    }
-    const Eigen::Matrix3d cp = A.ldlt().solve(Bp);
-    const Eigen::Matrix<double, 2, 3> cw = C.ldlt().solve(Bw);
-    if (!cp.allFinite() || !cw.allFinite()) continue;
-    out[i].v_body_mps = Ti.R.transpose() * cp.row(1).transpose();
-    out[i].w_body_radps = cw.row(0).transpose();
-    out[i].valid = true;
+    out[i] = Fit(poses, a, b, i, /*allow_quadratic=*/true);
   }
   return out;
+}
+
+StampedVelocity NewestVelocity(const std::vector<StampedPose>& recent, TimeNs window_ns) {
+  if (recent.empty()) return {};
+  const std::size_t i = recent.size() - 1;
+  const TimeNs median = MedianInterval(recent);
+  const double gap = kGapMedianIntervals * static_cast<double>(median);
+  std::size_t a = i;
+  while (a > 0 && recent[i].t_ns - recent[a - 1].t_ns <= window_ns &&
+         static_cast<double>(recent[a].t_ns - recent[a - 1].t_ns) <= gap)
+    --a;
+  if (a == i && i > 0 && static_cast<double>(recent[i].t_ns - recent[i - 1].t_ns) <= gap) --a;
+  return Fit(recent, a, i + 1, i, /*allow_quadratic=*/false);
 }
 
 Sampled SampleAt(const std::vector<StampedPose>& poses,

@@ -32,6 +32,13 @@ inline constexpr TimeNs kDefaultVelocityHalfWindowNs = 150 * kNsPerMs;
 std::vector<StampedVelocity> EstimateVelocities(const std::vector<StampedPose>& poses,
                                                 TimeNs half_window_ns);
 
+/// The velocity at the newest of `recent` poses from the poses before it within `window_ns` (at
+/// least one; none across a gap), for live use (the ROS node's twist): a line, not a quadratic —
+/// one-sided, the quadratic's slope at the end amplifies the tracker's jitter (EvSLAM AUC on
+/// three twins over 150 ms: line 0.62 / 0.59 / 0.66, quadratic 0.29 / 0.37 / 0.61; the centred
+/// quadratic 0.76 / 0.67 / 0.83). It lags accelerating motion by about half the window.
+StampedVelocity NewestVelocity(const std::vector<StampedPose>& recent, TimeNs window_ns);
+
 /// A trajectory sampled at requested stamps: poses interpolated (slerp + linear) and velocities
 /// linearly between the two poses around each stamp, within a segment; up to one median pose
 /// interval beyond a segment's ends, extrapolated at the end's velocity. Stamps elsewhere (before

@@ -43,6 +43,19 @@ TEST(Velocity, RecoversTheBodyFrameVelocityOfAKnownMotion) {
   }
 }
 
+TEST(Velocity, TheNewestPoseFromThePosesBeforeIt) {
+  const std::vector<StampedPose> poses = CirclePoses(10 * kNsPerMs, 1.0);
+  const StampedVelocity v = NewestVelocity(poses, 100 * kNsPerMs);
+  ASSERT_TRUE(v.valid);
+  const double t = 1.0;
+  const Eigen::Vector3d expected =
+      poses.back().T_world_body.R.transpose() * Eigen::Vector3d(-std::sin(t), std::cos(t), 0.2);
+  // A line through the last 100 ms of a circle at 1 rad/s: the chord's direction, ~0.05 rad off.
+  EXPECT_LT((v.v_body_mps - expected).norm(), 0.06);
+  EXPECT_GT((v.v_body_mps - expected).norm(), 0.02);
+  EXPECT_FALSE(NewestVelocity({poses.front()}, 100 * kNsPerMs).valid);
+}
+
 TEST(Velocity, GapsSplitTheTrajectoryAndSamplingMissesThem) {
   std::vector<StampedPose> poses = CirclePoses(10 * kNsPerMs, 1.0);
   // A 200 ms gap, then the body stands still elsewhere.

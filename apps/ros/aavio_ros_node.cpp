@@ -143,6 +143,13 @@ class Node {
     odometry.pose.pose.orientation.y = tick.quaternion[1];
     odometry.pose.pose.orientation.z = tick.quaternion[2];
     odometry.pose.pose.orientation.w = tick.quaternion[3];
+    // In child_frame_id (the camera), as nav_msgs/Odometry defines the twist.
+    odometry.twist.twist.linear.x = tick.linear_mps[0];
+    odometry.twist.twist.linear.y = tick.linear_mps[1];
+    odometry.twist.twist.linear.z = tick.linear_mps[2];
+    odometry.twist.twist.angular.x = tick.angular_radps[0];
+    odometry.twist.twist.angular.y = tick.angular_radps[1];
+    odometry.twist.twist.angular.z = tick.angular_radps[2];
     odometry_pub_.publish(odometry);
     geometry_msgs::TransformStamped tf;
     tf.header = odometry.header;

@@ -8,6 +8,7 @@
 
 #include "aavio/common/format.hpp"
 #include "aavio/config/config_sources.hpp"
+#include "aavio/geometry/velocity.hpp"
 #include "aavio/io/calibration.hpp"
 #include "aavio/io/rosbag_messages.hpp"
 #include "aavio/pipeline/live_odometry.hpp"
@@ -124,6 +125,20 @@ class Engine final : public OdometryEngine {
     out.position = {tick.T_world_cam.t.x(), tick.T_world_cam.t.y(), tick.T_world_cam.t.z()};
     out.quaternion = {q.x(), q.y(), q.z(), q.w()};
     out.tracked = tick.status == tracking::TrackingStatus::kOk;
+    // The twist: from the recent poses, restarted where the map was (the pose jumps there).
+    if (tick.reinitialised) recent_.clear();
+    recent_.push_back({tick.t_ns, tick.T_world_cam});
+    while (recent_.size() > 2 &&
+           tick.t_ns - recent_.front().t_ns > geometry::kDefaultVelocityHalfWindowNs)
+      recent_.erase(recent_.begin());
+    const geometry::StampedVelocity v =
+        geometry::NewestVelocity(recent_, geometry::kDefaultVelocityHalfWindowNs);
+    if (v.valid) {
+      for (int k = 0; k < 3; ++k) {
+        out.linear_mps[k] = v.v_body_mps[k];
+        out.angular_radps[k] = v.w_body_radps[k];
+      }
+    }
     if (tick.map) {
       const mapping::LocalMap& map = *tick.map;
       out.has_map = true;
@@ -152,6 +167,7 @@ class Engine final : public OdometryEngine {
   std::mutex mutex_;
   std::unique_ptr<pipeline::LiveOdometry> live_;
   std::vector<imu::ImuSample> early_imu_;
+  std::vector<geometry::StampedPose> recent_;  // the poses of the last window, for the twist
   TimeNs start_ns_ = 0;
   bool finished_ = false;
 };

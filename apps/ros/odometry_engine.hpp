@@ -33,6 +33,9 @@ struct TickOutput {
   std::int64_t t_ns = 0;
   std::array<double, 3> position{};    ///< rectified left camera in the world [m]
   std::array<double, 4> quaternion{};  ///< x y z w
+  /// The camera's velocity in its own frame (m/s, rad/s), from the last 150 ms of poses
+  /// (geometry::NewestVelocity); zero until there are two poses.
+  std::array<double, 3> linear_mps{}, angular_radps{};
   bool tracked = false;
   // A new local map on this tick (else empty):
   bool has_map = false;
