@@ -52,6 +52,7 @@ RunRecorder::RunRecorder(RunRecorderOptions options, const geometry::StereoRig& 
     : options_(std::move(options)),
       config_(config),
       stereo_(mapping::RectifiedStereo::FromRig(rig)),
+      T_imu_cam_(rig.T_imu_rect_left()),
       wall_start_(Clock::now()),
       depth_writer_(std::move(depth_writer)),
       // Every `depth_every_` confirmed maps (5 per second at the presets' 20 Hz) one goes to
@@ -311,6 +312,16 @@ nlohmann::json RunRecorder::WriteMotion(std::vector<Status>* failures) {
     j["speed_median_mps"] = median(speeds);
     j["speed_max_mps"] = *std::max_element(speeds.begin(), speeds.end());
     j["turn_rate_median_dps"] = median(turn_rates);
+  }
+  if (T_imu_cam_) {
+    if (const std::optional<imu::GravityDirection> g =
+            gravity_.Estimate(trajectory_, T_imu_cam_->R)) {
+      const Eigen::Quaterniond q(g->R_up_world());
+      j["gravity"] = {{"down_world", {g->down_world.x(), g->down_world.y(), g->down_world.z()}},
+                      {"magnitude_m_s2", g->magnitude_m_s2},
+                      {"span_s", g->span_s},
+                      {"q_up_world_xyzw", {q.x(), q.y(), q.z(), q.w()}}};
+    }
   }
   if (options_.layout == io::TrajectoryLayout::kTum && options_.poses_at.empty()) return j;
   const fs::path path = out / io::TrajectoryLayoutFileName(options_.layout);

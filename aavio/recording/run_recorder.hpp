@@ -21,6 +21,7 @@
 
 #include "aavio/eval/sample_ceiling.hpp"
 #include "aavio/geometry/stereo_rig.hpp"
+#include "aavio/imu/gravity_direction.hpp"
 #include "aavio/io/depth_folder_writer.hpp"
 #include "aavio/io/output_folder.hpp"
 #include "aavio/io/ply.hpp"
@@ -95,6 +96,12 @@ class RunRecorder {
 
   /// A packet of events read, and the time reading it took.
   void AddPacket(std::size_t events, double reading_ms);
+  /// IMU samples read: with the rig's IMU extrinsic, the run's gravity direction (summary.json
+  /// "gravity", imu::GravityDirectionEstimator).
+  void AddImu(const std::vector<imu::ImuSample>& samples) {
+    for (const imu::ImuSample& s : samples)
+      gravity_.Add(s);
+  }
   /// The time of a stage the ticks do not report (e.g. "event_insertion").
   void AddStage(const std::string& stage, double ms, double items = 0.0) {
     timings_.Add(stage, ms, items);
@@ -137,6 +144,8 @@ class RunRecorder {
   RunRecorderOptions options_;
   pipeline::OdometryConfig config_;
   mapping::RectifiedStereo stereo_;
+  std::optional<geometry::RigidTransform> T_imu_cam_;  // the rig's IMU ← rectified left camera
+  imu::GravityDirectionEstimator gravity_;
   std::chrono::steady_clock::time_point wall_start_;
   io::DepthFolderWriter depth_writer_;
   std::ofstream csv_;

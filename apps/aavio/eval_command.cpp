@@ -47,6 +47,7 @@ struct EvalOptions {
 // One estimate scored: a trajectory pair, or a run folder (`run_dir` not empty).
 struct Scored {
   std::string est_path, gt_path;
+  std::string note;  // how the estimate was turned, or why posyaw may mislead
   std::optional<RunGroundTruth> truth;
   std::optional<TrajectoryEvaluation> trajectory;
   std::optional<eval::DepthErrorSummary> depth;
@@ -63,6 +64,30 @@ Expected<TrajectoryEvalOptions> TrajectoryOptions(const EvalOptions& options) {
   if (!options.fractions.empty()) eval_options.rpe.fractions = options.fractions;
   eval_options.rpe.lengths_m = options.lengths_m;
   return eval_options;
+}
+
+// posyaw rotates about z only, so both worlds must have z up: a run's world is its first camera's,
+// turned here by the gravity direction the run measured (summary.json motion.gravity).
+std::string TurnZUp(const nlohmann::json& summary, std::vector<geometry::StampedPose>* poses) {
+  const nlohmann::json* g = nullptr;
+  if (summary.contains("motion") && summary["motion"].contains("gravity"))
+    g = &summary["motion"]["gravity"];
+  if (!g || !(*g)["q_up_world_xyzw"].is_array() || (*g)["q_up_world_xyzw"].size() != 4) {
+    return "note: posyaw rotates about z alone and so assumes both worlds have z up; the estimate "
+           "has no measured gravity to turn it by (a run with an IMU and its extrinsic, 2 s or "
+           "more, has one)";
+  }
+  const nlohmann::json& q = (*g)["q_up_world_xyzw"];
+  const Eigen::Matrix3d R_up = Eigen::Quaterniond(q[3].get<double>(), q[0].get<double>(),
+                                                  q[1].get<double>(), q[2].get<double>())
+                                   .normalized()
+                                   .toRotationMatrix();
+  for (geometry::StampedPose& p : *poses) {
+    p.T_world_body.R = R_up * p.T_world_body.R;
+    p.T_world_body.t = R_up * p.T_world_body.t;
+  }
+  return StrFormat("the estimate turned z-up by the gravity the run measured (%.2f m/s^2)",
+                   (*g)["magnitude_m_s2"].get<double>());
 }
 
 // The velocities a file gives (EvSLAM's linear velocity; the angular one derived from its poses),
@@ -128,6 +153,8 @@ Expected<Scored> Score(const EvalOptions& options, const std::string& run_dir) {
   if (has_estimate) {
     Expected<io::TrajectoryFile> est = io::ReadTrajectoryFile(r.est_path, *format, stamps);
     if (!est) return est.status();
+    if (eval_options->alignment == eval::Alignment::kPosYaw)
+      r.note = TurnZUp(r.summary, &est->poses);
     if (est->format == io::TrajectoryFormat::kKitti && gt.format == io::TrajectoryFormat::kKitti &&
         stamps && stamps->empty() && est->poses.size() != gt.poses.size()) {
       return InvalidArgument(StrFormat(
@@ -164,6 +191,7 @@ nlohmann::json ScoredJson(const Scored& r) {
   nlohmann::json j =
       r.trajectory ? TrajectoryEvaluationJson(*r.trajectory) : nlohmann::json::object();
   if (r.trajectory) j["estimate"] = r.est_path;
+  if (!r.note.empty()) j["note"] = r.note;
   j["ground_truth"] = r.gt_path;
   if (r.depth) j["depth"] = DepthJson(*r.depth);
   return j;
@@ -179,6 +207,7 @@ Status Evaluate(const EvalOptions& options, Context& ctx) {
   }
   if (r->trajectory) {
     ctx.out << "estimate     " << r->est_path << "\nground truth " << r->gt_path << "\n";
+    if (!r->note.empty()) ctx.out << r->note << "\n";
     ctx.out << TrajectoryEvaluationTable(*r->trajectory);
   } else {
     ctx.out << "trajectory: none (a run on the ground-truth poses); depth maps of " << run_dir

@@ -266,6 +266,7 @@ Fed FeedPackets(io::SequenceReader* reader, TimeNs begin, TimeNs end,
         packet.left.size() + packet.right.size(),
         std::chrono::duration<double, std::milli>(Clock::now() - read_start).count());
     const TimeNs t_end = std::min(packet.t_end_ns, end);
+    recorder->AddImu(packet.imu);
     if (!packet.imu.empty()) {
       if (fed.imu_samples == 0) fed.imu_first_ns = packet.imu.front().t_ns;
       fed.imu_samples += static_cast<std::int64_t>(packet.imu.size());
