@@ -287,17 +287,15 @@ Status RunRecorder::CloseTrajectory() {
 // The velocity at every pose, and the trajectory in the layout and at the stamps asked for;
 // their summary for summary.json.
 nlohmann::json RunRecorder::WriteMotion(std::vector<Status>* failures) {
-  auto keep_status = [failures](Status status) {
+  auto keep = [failures](Status status) {
     if (!status.ok()) failures->push_back(std::move(status));
   };
-  auto* keep = &keep_status;
   nlohmann::json j = nlohmann::json::object();
   if (trajectory_.empty()) return j;
   const fs::path out(options_.out_dir);
   const std::vector<geometry::StampedVelocity> velocities =
       geometry::EstimateVelocities(trajectory_, geometry::kDefaultVelocityHalfWindowNs);
-  (*keep)(
-      io::WriteTextFile((out / run_files::kVelocity).string(), io::FormatVelocities(velocities)));
+  keep(io::WriteTextFile((out / run_files::kVelocity).string(), io::FormatVelocities(velocities)));
   std::vector<double> speeds, turn_rates;
   for (const geometry::StampedVelocity& v : velocities) {
     if (!v.valid) continue;
@@ -326,11 +324,11 @@ nlohmann::json RunRecorder::WriteMotion(std::vector<Status>* failures) {
   if (options_.layout == io::TrajectoryLayout::kTum && options_.poses_at.empty()) return j;
   const fs::path path = out / io::TrajectoryLayoutFileName(options_.layout);
   if (options_.poses_at.empty()) {
-    (*keep)(io::WriteTrajectory(path.string(), trajectory_, velocities, options_.layout));
+    keep(io::WriteTrajectory(path.string(), trajectory_, velocities, options_.layout));
     return j;
   }
   const geometry::Sampled sampled = geometry::SampleAt(trajectory_, velocities, options_.poses_at);
-  (*keep)(io::WriteTrajectory(path.string(), sampled.poses, sampled.velocities, options_.layout));
+  keep(io::WriteTrajectory(path.string(), sampled.poses, sampled.velocities, options_.layout));
   j["poses_at"] = {{"requested", options_.poses_at.size()},
                    {"written", sampled.poses.size()},
                    {"missing", sampled.missing.size()},
