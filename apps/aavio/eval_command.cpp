@@ -2,6 +2,7 @@
 // a run folder against the ground truth its sequence names (`--run`, with depth accuracy too);
 // the definitions are those of rpg_trajectory_evaluation (docs/evaluation.md).
 #include <CLI/CLI.hpp>
+#include <array>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <ostream>
@@ -69,25 +70,38 @@ Expected<TrajectoryEvalOptions> TrajectoryOptions(const EvalOptions& options) {
 // posyaw rotates about z only, so both worlds must have z up: a run's world is its first camera's,
 // turned here by the gravity direction the run measured (summary.json motion.gravity).
 std::string TurnZUp(const nlohmann::json& summary, std::vector<geometry::StampedPose>* poses) {
-  const nlohmann::json* g = nullptr;
-  if (summary.contains("motion") && summary["motion"].contains("gravity"))
-    g = &summary["motion"]["gravity"];
-  if (!g || !(*g)["q_up_world_xyzw"].is_array() || (*g)["q_up_world_xyzw"].size() != 4) {
+  // A summary is the user's file: every entry is checked before it is read.
+  std::array<double, 4> q{};
+  double magnitude = 0.0;
+  bool found = false;
+  const auto motion = summary.find("motion");
+  if (motion != summary.end() && motion->is_object()) {
+    const auto g = motion->find("gravity");
+    if (g != motion->end() && g->is_object()) {
+      const auto qs = g->find("q_up_world_xyzw");
+      const auto m = g->find("magnitude_m_s2");
+      found =
+          qs != g->end() && qs->is_array() && qs->size() == 4 && m != g->end() && m->is_number();
+      for (std::size_t k = 0; found && k < 4; ++k) {
+        found = (*qs)[k].is_number();
+        if (found) q[k] = (*qs)[k].get<double>();
+      }
+      if (found) magnitude = m->get<double>();
+    }
+  }
+  const Eigen::Quaterniond rotation(q[3], q[0], q[1], q[2]);
+  if (!found || !(rotation.norm() > 0.5)) {
     return "note: posyaw rotates about z alone and so assumes both worlds have z up; the estimate "
            "has no measured gravity to turn it by (a run with an IMU and its extrinsic, 2 s or "
            "more, has one)";
   }
-  const nlohmann::json& q = (*g)["q_up_world_xyzw"];
-  const Eigen::Matrix3d R_up = Eigen::Quaterniond(q[3].get<double>(), q[0].get<double>(),
-                                                  q[1].get<double>(), q[2].get<double>())
-                                   .normalized()
-                                   .toRotationMatrix();
+  const Eigen::Matrix3d R_up = rotation.normalized().toRotationMatrix();
   for (geometry::StampedPose& p : *poses) {
     p.T_world_body.R = R_up * p.T_world_body.R;
     p.T_world_body.t = R_up * p.T_world_body.t;
   }
   return StrFormat("the estimate turned z-up by the gravity the run measured (%.2f m/s^2)",
-                   (*g)["magnitude_m_s2"].get<double>());
+                   magnitude);
 }
 
 // The velocities a file gives (EvSLAM's linear velocity; the angular one derived from its poses),
@@ -258,13 +272,19 @@ Status EvaluateMany(const EvalOptions& options, Context& ctx) {
       row.insert(row.end(), 6, "");
     }
     row.push_back(r->depth ? StrFormat("%.2f", 100.0 * r->depth->relative) : "");
+    // From the run's summary.json, where it holds them as numbers.
     const nlohmann::json& s = r->summary;
-    row.push_back(s.contains("status") && s["status"].is_object()
-                      ? std::to_string(s["status"].value("lost", 0LL))
-                      : "");
-    row.push_back(s.contains("real_time_factor") && s["real_time_factor"].is_number()
-                      ? StrFormat("%.2f", s["real_time_factor"].get<double>())
-                      : "");
+    const auto status = s.find("status");
+    std::string lost;
+    if (status != s.end() && status->is_object()) {
+      const auto n = status->find("lost");
+      lost = n != status->end() && n->is_number_integer() ? std::to_string(n->get<long long>())
+                                                          : "0";  // only counts that occurred
+    }
+    row.push_back(lost);
+    const auto factor = s.find("real_time_factor");
+    row.push_back(
+        factor != s.end() && factor->is_number() ? StrFormat("%.2f", factor->get<double>()) : "");
     rows.push_back(std::move(row));
   }
   if (options.json) {

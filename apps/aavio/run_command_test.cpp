@@ -426,6 +426,16 @@ TEST(Cli, EvalScoresABagRunWithItsCalibrationAndTheBagsPoses) {
       {"run", bag, "--calib", moved.string(), "--out", evslam, "--overwrite", "--format", "g2o"});
   EXPECT_EQ(r.code, kExitUsage);
   EXPECT_NE(r.err.find("none of tum, kitti, euroc, evslam"), std::string::npos) << r.err;
+  // A summary.json edited by hand: entries of the wrong type are read as missing, never a crash.
+  testing::WriteFile(std::filesystem::path(out) / "summary.json",
+                     "{\"sequence\": \"" + bag + "\", \"calibration\": \"" + moved.string() +
+                         "\", \"motion\": {\"gravity\": {\"q_up_world_xyzw\": [\"a\", 1, "
+                         "2, 3]}}, \"status\": 5, \"real_time_factor\": \"x\"}");
+  r = RunAavio({"eval", "--run", out, "--align", "posyaw"});
+  EXPECT_EQ(r.code, kExitOk) << r.err;
+  EXPECT_NE(r.out.find("no measured gravity"), std::string::npos) << r.out;
+  r = RunAavio({"eval", "--run", out, "--run", evslam});
+  EXPECT_EQ(r.code, kExitOk) << r.err;
 }
 
 }  // namespace
