@@ -7,7 +7,7 @@
 #include <atomic>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
+#include <sstream>
 #include <string>
 
 namespace aavio::testing {
@@ -38,7 +38,9 @@ inline std::string WriteFile(const std::filesystem::path& path, const std::strin
 /// The whole file ("" if it cannot be read).
 inline std::string ReadAll(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  std::ostringstream text;
+  if (in) text << in.rdbuf();
+  return text.str();
 }
 
 /// Replaces the first occurrence of `from` in `text` (the test fails if there is none).

@@ -54,7 +54,7 @@ bool IsInteger(std::string_view f) {
 }
 
 // The layout of a trajectory's text, told from its header and data (TrajectoryFormat::kAuto).
-Expected<TrajectoryFormat> DetectFormat(const std::string& text, const std::string& origin) {
+Expected<TrajectoryFormat> DetectFormat(const std::string& text) {
   bool euroc_header = false;
   std::vector<std::string_view> stamps;
   text::Lines lines(text);
@@ -153,7 +153,7 @@ Expected<TrajectoryFile> ParseTrajectoryFile(const std::string& text, const std:
                                              TrajectoryFormat format,
                                              const std::vector<TimeNs>* kitti_stamps) {
   if (format == TrajectoryFormat::kAuto) {
-    Expected<TrajectoryFormat> detected = DetectFormat(text, origin);
+    Expected<TrajectoryFormat> detected = DetectFormat(text);
     if (!detected) return detected.status();
     format = *detected;
   }
@@ -271,7 +271,7 @@ Expected<TrajectoryFile> ReadTrajectoryFile(const std::string& path, TrajectoryF
 Expected<TrajectoryFormat> DetectTrajectoryFormat(const std::string& path) {
   Expected<std::string> text = ReadBoundedFile(path, kMaxTrajectoryFileBytes, "trajectory file");
   if (!text) return text.status();
-  return DetectFormat(*text, path);
+  return DetectFormat(*text);
 }
 
 Expected<std::vector<geometry::StampedPose>> ParseTumTrajectory(const std::string& text,

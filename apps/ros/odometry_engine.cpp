@@ -131,12 +131,12 @@ class Engine final : public OdometryEngine {
     while (recent_.size() > 2 &&
            tick.t_ns - recent_.front().t_ns > geometry::kDefaultVelocityHalfWindowNs)
       recent_.erase(recent_.begin());
-    const geometry::StampedVelocity v =
+    const geometry::StampedVelocity twist =
         geometry::NewestVelocity(recent_, geometry::kDefaultVelocityHalfWindowNs);
-    if (v.valid) {
+    if (twist.valid) {
       for (int k = 0; k < 3; ++k) {
-        out.linear_mps[k] = v.v_body_mps[k];
-        out.angular_radps[k] = v.w_body_radps[k];
+        out.linear_mps[k] = twist.v_body_mps[k];
+        out.angular_radps[k] = twist.w_body_radps[k];
       }
     }
     if (tick.map) {
