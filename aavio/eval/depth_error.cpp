@@ -49,9 +49,11 @@ void DepthErrorAccumulator::Add(const std::vector<Eigen::Vector3d>& points_world
     true_depth_sum_ += z_gt;
     if (camera_.fb_px_m > 0.0)
       disparity_errors_.push_back(camera_.fb_px_m * std::abs(1.0 / p.z() - 1.0 / z_gt));
+    std::uint8_t kind = 0;
     if (!gt_edges.empty() && gt_edges.at<std::uint8_t>(vi, ui) == 255) {
       ++horizontal_points_;
       relative_horizontal_sum_ += error / z_gt;
+      kind |= ScoredDepthPoint::kHorizontal;
     }
     for (std::size_t c = 0; c < kDepthCutoffsM.size(); ++c) {
       if (z_gt > kDepthCutoffsM[c]) continue;
@@ -62,6 +64,11 @@ void DepthErrorAccumulator::Add(const std::vector<Eigen::Vector3d>& points_world
     if (OnDiscontinuity(gt_depth_m, ui, vi)) {
       ++discontinuity_points_;
       relative_discontinuity_sum_ += error / z_gt;
+      kind |= ScoredDepthPoint::kDiscontinuity;
+    }
+    if (keep_points_) {
+      points_.push_back({static_cast<float>(u), static_cast<float>(v), static_cast<float>(z_gt),
+                         static_cast<float>(p.z()), kind, static_cast<std::uint32_t>(frames_ - 1)});
     }
   }
   if (gt_edges.empty()) return;

@@ -16,6 +16,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <cstdint>
 #include <opencv2/core/mat.hpp>
 #include <vector>
 
@@ -76,9 +77,23 @@ struct DepthErrorSummary {
   std::array<DepthCutoffSummary, kDepthCutoffsM.size()> cutoffs{};
 };
 
+/// One scored estimate, where it fell in the ground-truth frame (kept on request, for plots).
+struct ScoredDepthPoint {
+  static constexpr std::uint8_t kDiscontinuity = 1;  ///< on a ground-truth depth discontinuity
+  static constexpr std::uint8_t kHorizontal = 2;     ///< on a near-horizontal ground-truth edge
+  float u = 0.0f, v = 0.0f;                          ///< pixel of the ground-truth frame
+  float z_gt_m = 0.0f, z_est_m = 0.0f;
+  std::uint8_t kind = 0;    ///< kDiscontinuity | kHorizontal
+  std::uint32_t frame = 0;  ///< the how-manieth Add it came from (0 first)
+};
+
 class DepthErrorAccumulator {
  public:
   explicit DepthErrorAccumulator(const PinholeCamera& camera) : camera_(camera) {}
+
+  /// Keep every scored point (points()) from now on; off by default: a long run scores millions.
+  void KeepPoints(bool keep) { keep_points_ = keep; }
+  const std::vector<ScoredDepthPoint>& points() const { return points_; }
 
   /// One map (points in the world) against one ground-truth frame (depth CV_32F and edge labels
   /// CV_8U, may be empty) seen from T_world_cam.
@@ -95,6 +110,8 @@ class DepthErrorAccumulator {
   void CountBlocks(const cv::Mat& covered, const cv::Mat& gt_edges);
 
   PinholeCamera camera_;
+  bool keep_points_ = false;
+  std::vector<ScoredDepthPoint> points_;
   std::vector<double> errors_, relative_, disparity_errors_;
   double true_depth_sum_ = 0.0;
   double relative_horizontal_sum_ = 0.0;

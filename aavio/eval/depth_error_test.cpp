@@ -99,6 +99,34 @@ TEST(DepthError, PointsOnDepthDiscontinuitiesAreScoredApart) {
   EXPECT_NEAR(s.relative, (0.75 + 0.04) / 3.0, 1e-6);
 }
 
+// Kept points (for the report's plots) carry where they fell, both depths, their kind and their
+// frame; none are kept unless asked for.
+TEST(DepthError, KeptPointsCarryTheirKindAndFrame) {
+  const PinholeCamera camera{40, 30, 50.0, 20.0, 15.0};
+  cv::Mat depth(30, 40, CV_32FC1, cv::Scalar(20.0f));
+  depth.colRange(20, 40).setTo(5.0f);
+  cv::Mat edges(30, 40, CV_8UC1, cv::Scalar(0));
+  edges.at<std::uint8_t>(10, 30) = 255;  // a near-horizontal edge pixel
+  auto at = [&](int x, int y, double z) {
+    return Eigen::Vector3d((x - 20.0) / 50.0 * z, (y - 15.0) / 50.0 * z, z);
+  };
+  DepthErrorAccumulator acc(camera);
+  acc.Add({at(5, 10, 20.4)}, depth, edges, geometry::RigidTransform());
+  EXPECT_TRUE(acc.points().empty());
+  acc.KeepPoints(true);
+  acc.Add({at(19, 10, 5.0), at(30, 10, 5.1)}, depth, edges, geometry::RigidTransform());
+  ASSERT_EQ(acc.points().size(), 2u);
+  const ScoredDepthPoint& silhouette = acc.points()[0];
+  EXPECT_NEAR(silhouette.u, 19.0f, 1e-4f);
+  EXPECT_NEAR(silhouette.v, 10.0f, 1e-4f);
+  EXPECT_EQ(silhouette.z_gt_m, 20.0f);
+  EXPECT_NEAR(silhouette.z_est_m, 5.0f, 1e-5f);
+  EXPECT_EQ(silhouette.kind, ScoredDepthPoint::kDiscontinuity);
+  EXPECT_EQ(silhouette.frame, 1u);
+  EXPECT_EQ(acc.points()[1].kind, ScoredDepthPoint::kHorizontal);
+  EXPECT_EQ(acc.points()[1].z_gt_m, 5.0f);
+}
+
 // The same matching error (0.25 px of disparity) on a near and a far plane: the relative depth
 // error grows with depth, the disparity error does not; without f·b it is not computed.
 TEST(DepthError, DisparityErrorDoesNotGrowWithDepth) {

@@ -260,6 +260,7 @@ Status Odometry::Tick(TimeNs t_ns, int skipped_ticks) {
   tick.tracking_ms = tracked.prediction_ms + tracked.registration_ms;
   tick.prediction_ms = tracked.prediction_ms;
   tick.gyro_bias = tracker_.gyro_bias();
+  tick.imu_state = tracker_.imu_state();
   if (tracked.status == tracking::TrackingStatus::kOk) MeasureEdgeAge(tracked.T_world_cur, *obs);
   if (!run_mapping_) {
     if (on_tick) on_tick(tick);

@@ -82,7 +82,9 @@ struct OdometryTick {
   mapping::LocalMapPtr map;             ///< the map published on this tick, if any
   /// The observation that map was made on (its time surfaces: the depth map's background).
   std::shared_ptr<const events::Observation> map_observation;
-  Eigen::Vector3d gyro_bias = Eigen::Vector3d::Zero();
+  Eigen::Vector3d gyro_bias = Eigen::Vector3d::Zero();  ///< the bias the tick's prediction used
+  /// imu.mode=full, once the back-end has solved a window: its biases, velocity and gravity.
+  std::optional<imu::ImuState> imu_state;
 };
 
 /// Which of the ticks due in one Process call run.

@@ -41,6 +41,8 @@ class DepthScorer {
   Expected<bool> AddDepthImage(TimeNs t_ns, const cv::Mat& depth_m);
 
   const eval::DepthErrorAccumulator& accumulator() const { return accumulator_; }
+  /// Keep every scored point (eval::DepthErrorAccumulator::KeepPoints).
+  void KeepPoints(bool keep) { accumulator_.KeepPoints(keep); }
   const RunGroundTruth& truth() const { return truth_; }
 
  private:

@@ -147,20 +147,25 @@ Expected<RunGroundTruth> RunGroundTruth::Of(const io::SequenceDescription& d,
 
 Expected<eval::DepthErrorAccumulator> EvaluateRunDepth(
     const std::string& estimate_dir, const RunGroundTruth& truth,
-    const std::vector<geometry::StampedPose>& gt_poses) {
+    const std::vector<geometry::StampedPose>& gt_poses, std::vector<io::GtDepthEntry>* scored) {
   Expected<DepthScorer> scorer = DepthScorer::Create(truth, gt_poses);
   if (!scorer) return scorer.status();
+  if (scored) {
+    scored->clear();
+    scorer->KeepPoints(true);
+  }
   Expected<std::vector<io::GtDepthEntry>> estimates = io::ReadGtDepthIndex(estimate_dir);
   if (!estimates) return estimates.status();
   for (const io::GtDepthEntry& est : *estimates) {
     Expected<io::GtDepthFrame> estimate =
         io::LoadGtDepthFrame(estimate_dir, est, truth.fb, truth.disparity_offset);
     if (!estimate) return estimate.status();
-    Expected<bool> scored = scorer->AddDepthImage(est.t_ns, estimate->depth_m);
-    if (!scored) {
-      return scored.status().WithContext(
+    Expected<bool> added = scorer->AddDepthImage(est.t_ns, estimate->depth_m);
+    if (!added) {
+      return added.status().WithContext(
           StrFormat("%s/disparity_%s.png", estimate_dir.c_str(), est.index.c_str()));
     }
+    if (*added && scored) scored->push_back(est);
   }
   if (scorer->accumulator().Summary().frames == 0) {
     return InvalidArgument(estimate_dir + ": no depth map has a ground-truth frame of " +

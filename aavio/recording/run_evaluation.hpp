@@ -17,6 +17,7 @@
 #include "aavio/eval/velocity_error.hpp"
 #include "aavio/geometry/pose_buffer.hpp"
 #include "aavio/geometry/stereo_rig.hpp"
+#include "aavio/io/ground_truth_depth.hpp"
 #include "aavio/io/sequence.hpp"
 
 namespace aavio::recording {
@@ -79,9 +80,12 @@ struct RunGroundTruth {
 
 /// Scores every depth map of `run_depth_dir` (`timestamps.txt` + `disparity_INDEX.png` or
 /// `depth_INDEX.tiff`, the layout `aavio run` and `aavio simulate` share) as DepthScorer does.
+/// With `scored`, the accumulator keeps its points (ScoredDepthPoint) and `scored` gets the maps
+/// in the order they were scored: entry i is the points' frame i.
 Expected<eval::DepthErrorAccumulator> EvaluateRunDepth(
     const std::string& run_depth_dir, const RunGroundTruth& truth,
-    const std::vector<geometry::StampedPose>& gt_poses);
+    const std::vector<geometry::StampedPose>& gt_poses,
+    std::vector<io::GtDepthEntry>* scored = nullptr);
 
 /// Whether the ATE rotation error is mostly the alignment's: the positions leave its rotation
 /// uncertain by at least half the error (eval::TrajectoryError::alignment_rotation_sigma_deg),
