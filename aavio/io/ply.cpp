@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -106,7 +107,39 @@ Status PlyWriter::Append(std::span<const Eigen::Vector3f> points, std::span<cons
   return part_ ? Status::Ok() : IoError(path_ + ".part: write failed (disk full?)");
 }
 
-Status PlyWriter::Close() {
+namespace {
+
+// Turns the `count` vertices from byte `offset` of an open file, a block at a time.
+Status RotateVertices(std::fstream& file, std::size_t offset, std::size_t count,
+                      const Eigen::Matrix3d& R, const std::string& path) {
+  constexpr std::size_t kBlock = 65536;
+  std::vector<char> block(kBlock * kVertexBytes);
+  for (std::size_t done = 0; done < count;) {
+    const std::size_t n = std::min(kBlock, count - done);
+    const auto at = static_cast<std::streamoff>(offset + done * kVertexBytes);
+    file.seekg(at);
+    file.read(block.data(), static_cast<std::streamsize>(n * kVertexBytes));
+    if (!file) return IoError(path + ": cannot read back its points to turn them");
+    for (std::size_t i = 0; i < n; ++i) {
+      char* vertex = block.data() + i * kVertexBytes;
+      float xyz[3];
+      std::memcpy(xyz, vertex, sizeof xyz);
+      const Eigen::Vector3d p = R * Eigen::Vector3d(xyz[0], xyz[1], xyz[2]);
+      for (int k = 0; k < 3; ++k)
+        xyz[k] = static_cast<float>(p[k]);
+      std::memcpy(vertex, xyz, sizeof xyz);
+    }
+    file.seekp(at);
+    file.write(block.data(), static_cast<std::streamsize>(n * kVertexBytes));
+    if (!file) return IoError(path + ": cannot write its turned points (disk full?)");
+    done += n;
+  }
+  return Status::Ok();
+}
+
+}  // namespace
+
+Status PlyWriter::Close(const std::optional<Eigen::Matrix3d>& rotation) {
   if (!part_.is_open()) return FailedPrecondition(path_ + ": already closed");
   part_.close();
   const std::string part_path = path_ + ".part";
@@ -125,6 +158,8 @@ Status PlyWriter::Close() {
   }
   {
     std::fstream file(part_path, std::ios::binary | std::ios::in | std::ios::out);
+    if (rotation)
+      AAVIO_RETURN_IF_ERROR(RotateVertices(file, header_bytes_, complete, *rotation, part_path));
     file.seekp(static_cast<std::streamoff>(count_at_));
     file << CountLines(complete, /*padded=*/true);
     if (!file) return IoError(part_path + ": cannot write its point count");

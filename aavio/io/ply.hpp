@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdint>
 #include <fstream>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -39,7 +40,10 @@ class PlyWriter {
   static Expected<PlyWriter> Open(const std::string& path, const std::string& comment = "");
   /// `colours` must have one entry per point.
   Status Append(std::span<const Eigen::Vector3f> points, std::span<const Rgb> colours);
-  Status Close();
+  /// Completes the file: its count written, `<path>.part` renamed to `path`. With `rotation`,
+  /// every point is first turned by it (a change of world frame, e.g. to gravity's z up),
+  /// in place, a block at a time.
+  Status Close(const std::optional<Eigen::Matrix3d>& rotation = std::nullopt);
   std::size_t size() const { return size_; }
 
  private:

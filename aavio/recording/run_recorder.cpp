@@ -15,6 +15,22 @@
 namespace aavio::recording {
 namespace {
 
+// summary.json "world": the frame the trajectory and map.ply are in.
+nlohmann::json WorldJson(RunRecorderOptions::World world,
+                         const std::optional<Eigen::Matrix3d>& R_gravity_first) {
+  if (world == RunRecorderOptions::World::kGroundTruth) return {{"frame", "ground_truth"}};
+  if (!R_gravity_first) {
+    nlohmann::json j = {{"frame", "first_camera"}};
+    if (world == RunRecorderOptions::World::kGravity) {
+      j["gravity_unavailable"] =
+          "no gravity was measured (it needs an IMU, its extrinsic and 2 s of tracked poses)";
+    }
+    return j;
+  }
+  const Eigen::Quaterniond q(*R_gravity_first);
+  return {{"frame", "gravity"}, {"q_world_first_camera_xyzw", {q.x(), q.y(), q.z(), q.w()}}};
+}
+
 // timings.csv's IMU columns: the gyroscope bias the tick used [rad/s], and with the IMU back-end
 // (imu.mode=full, once solved) its accelerometer bias [m/s²] and gravity in the world [m/s²].
 std::string ImuColumns(const pipeline::OdometryTick& t) {
@@ -277,7 +293,7 @@ Status RunRecorder::AddMappingCycle(const pipeline::MappingCycle& cycle) {
   return Status::Ok();
 }
 
-Status RunRecorder::CloseTrajectory() {
+Status RunRecorder::CloseTrajectory(bool rewrite) {
   const fs::path out(options_.out_dir);
   const fs::path part = out / run_files::kTrajectoryPart;
   const fs::path path = out / run_files::kTrajectory;
@@ -287,18 +303,21 @@ Status RunRecorder::CloseTrajectory() {
     fs::remove(part, ec);
     return Status::Ok();
   }
-  if (trajectory_file_) {
+  if (trajectory_file_ && !rewrite) {
     fs::rename(part, path, ec);
     if (!ec) return Status::Ok();
   }
-  // A write failed on the way (a full disk): written again whole, in the part file's place.
+  // A write failed on the way (a full disk), or the world turned: written again whole, in the
+  // part file's place.
   fs::remove(part, ec);
   return io::WriteTumTrajectory(path.string(), trajectory_);
 }
 
 // The velocity at every pose, and the trajectory in the layout and at the stamps asked for;
 // their summary for summary.json.
-nlohmann::json RunRecorder::WriteMotion(std::vector<Status>* failures) {
+nlohmann::json RunRecorder::WriteMotion(const std::optional<imu::GravityDirection>& gravity,
+                                        const Eigen::Matrix3d& R_out_first,
+                                        std::vector<Status>* failures) {
   auto keep = [failures](Status status) {
     if (!status.ok()) failures->push_back(std::move(status));
   };
@@ -323,15 +342,15 @@ nlohmann::json RunRecorder::WriteMotion(std::vector<Status>* failures) {
     j["speed_max_mps"] = *std::max_element(speeds.begin(), speeds.end());
     j["turn_rate_median_dps"] = median(turn_rates);
   }
-  if (T_imu_cam_) {
-    if (const std::optional<imu::GravityDirection> g =
-            gravity_.Estimate(trajectory_, T_imu_cam_->R)) {
-      const Eigen::Quaterniond q(g->R_up_world());
-      j["gravity"] = {{"down_world", {g->down_world.x(), g->down_world.y(), g->down_world.z()}},
-                      {"magnitude_m_s2", g->magnitude_m_s2},
-                      {"span_s", g->span_s},
-                      {"q_up_world_xyzw", {q.x(), q.y(), q.z(), q.w()}}};
-    }
+  if (gravity) {
+    // In the world the files are in (z up already in a gravity world: q_up_world the identity).
+    imu::GravityDirection g = *gravity;
+    g.down_world = R_out_first * g.down_world;
+    const Eigen::Quaterniond q(g.R_up_world());
+    j["gravity"] = {{"down_world", {g.down_world.x(), g.down_world.y(), g.down_world.z()}},
+                    {"magnitude_m_s2", g.magnitude_m_s2},
+                    {"span_s", g.span_s},
+                    {"q_up_world_xyzw", {q.x(), q.y(), q.z(), q.w()}}};
   }
   if (options_.layout == io::TrajectoryLayout::kTum && options_.poses_at.empty()) return j;
   const fs::path path = out / io::TrajectoryLayoutFileName(options_.layout);
@@ -369,10 +388,21 @@ Expected<RunRecord> RunRecorder::Finish(bool interrupted, TimeNs end_ns,
     csv_.close();
     if (!csv_) keep(IoError((out / run_files::kTimings).string() + ": write failed (disk full?)"));
   }
-  keep(CloseTrajectory());
-  nlohmann::json motion = WriteMotion(&failures);
+  // Gravity, measured in the first camera's world; with gravity_world the files are turned z-up.
+  std::optional<imu::GravityDirection> gravity;
+  if (T_imu_cam_) gravity = gravity_.Estimate(trajectory_, T_imu_cam_->R);
+  std::optional<Eigen::Matrix3d> R_out_first;
+  if (options_.world == RunRecorderOptions::World::kGravity && gravity) {
+    R_out_first = gravity->R_up_world();
+    for (geometry::StampedPose& p : trajectory_)
+      p.T_world_body =
+          geometry::RigidTransform(*R_out_first, Eigen::Vector3d::Zero()) * p.T_world_body;
+  }
+  keep(CloseTrajectory(/*rewrite=*/R_out_first.has_value()));
+  nlohmann::json motion =
+      WriteMotion(gravity, R_out_first.value_or(Eigen::Matrix3d::Identity()), &failures);
   keep(io::WriteTextFile((out / run_files::kConfig).string(), options_.config_yaml));
-  keep(cloud_file_.Close());
+  keep(cloud_file_.Close(R_out_first));
   keep(depth_writer_.Finish());
 
   // Accuracy against the ground truth (what `aavio eval --run` computes, se3-aligned); why there
@@ -396,6 +426,7 @@ Expected<RunRecord> RunRecorder::Finish(bool interrupted, TimeNs end_ns,
   const double processing_s = std::max(record.wall_s - evaluation_s, 0.0);
   nlohmann::json& s = record.summary;
   s["mode"] = options_.mode;
+  s["world"] = WorldJson(options_.world, R_out_first);
   s["version"] = options_.version;
   s["sequence"] = options_.sequence;
   s["calibration"] = options_.calibration;

@@ -69,6 +69,16 @@ struct RunRecorderOptions {
   /// no stamps writes nothing more (stamped_traj_estimate.txt is TUM).
   io::TrajectoryLayout layout = io::TrajectoryLayout::kTum;
   std::vector<TimeNs> poses_at;
+  /// The world of the poses the recorder is given, and of the files it writes (summary.json
+  /// `world.frame`).
+  enum class World {
+    kFirstCamera,  ///< the odometry's: its first camera's frame
+    kGroundTruth,  ///< the modes on ground truth: the ground truth's
+    /// The first camera's, written turned z-up along the gravity the run measured (motion.gravity
+    /// q_up_world) — if it measured one, else left as it is (`world.frame` says which).
+    kGravity,
+  };
+  World world = World::kFirstCamera;
 };
 
 /// A finished run's figures (summary.json holds the same).
@@ -132,9 +142,13 @@ class RunRecorder {
               io::PlyWriter cloud_file, io::DiskReserve reserve);
   void AddRepresentation(TimeNs t_ns, const events::RepresentationTimings& t);
   /// stamped_traj_estimate.txt from its part file, or from memory if a write to that failed.
-  Status CloseTrajectory();
+  /// `rewrite`: the trajectory was turned since it was streamed; written again whole.
+  Status CloseTrajectory(bool rewrite);
   /// stamped_velocity_estimate.txt and the trajectory in options_.layout; summary.json "motion".
-  nlohmann::json WriteMotion(std::vector<Status>* failures);
+  /// `gravity` as measured in the first camera's world; `R_out_first`: that world → the one the
+  /// files are written in.
+  nlohmann::json WriteMotion(const std::optional<imu::GravityDirection>& gravity,
+                             const Eigen::Matrix3d& R_out_first, std::vector<Status>* failures);
   void AddCycleReport(const mapping::MappingCycleReport& r);
   /// A confirmed map: into the cloud, and every depth_every_-th into depth/ (scored there in the
   /// odometry's modes), drawn over the time surface of `observation` (may be null).

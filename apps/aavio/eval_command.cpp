@@ -95,6 +95,10 @@ std::string TurnZUp(const nlohmann::json& summary, std::vector<geometry::Stamped
            "has no measured gravity to turn it by (a run with an IMU and its extrinsic, 2 s or "
            "more, has one)";
   }
+  const auto world = summary.find("world");
+  if (world != summary.end() && world->is_object() && world->contains("frame") &&
+      (*world)["frame"] == "gravity")
+    return "the run's world is z-up along its measured gravity already (aavio run --world gravity)";
   const Eigen::Matrix3d R_up = rotation.normalized().toRotationMatrix();
   for (geometry::StampedPose& p : *poses) {
     p.T_world_body.R = R_up * p.T_world_body.R;

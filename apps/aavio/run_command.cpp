@@ -53,6 +53,7 @@ struct RunOptions {
   double start_s = 0.0, duration_s = 0.0;
   int repeat = 1;
   std::string format = "tum", poses_at;
+  std::string world = "first_camera";  ///< or "gravity"
   config::ConfigSources config;
 };
 
@@ -222,6 +223,14 @@ void PrintRun(const recording::RunRecord& record, const RunOptions& options,
       trajectories +=
           io::TrajectoryLayoutFileName(*io::TrajectoryLayoutNamed(options.format)) + ",";
   }
+  const auto world = s.find("world");
+  if (world != s.end() && world->contains("gravity_unavailable")) {
+    ctx.err << "warning: --world gravity: the trajectory and map.ply stay in the first camera's "
+               "frame: "
+            << (*world)["gravity_unavailable"].get<std::string>() << "\n";
+  } else if (world != s.end() && (*world)["frame"] == "gravity") {
+    ctx.out << "world: z up along the measured gravity (summary.json world)\n";
+  }
   ctx.out << "wrote " << options.out_dir << "/{" << trajectories
           << "summary.json,config.yaml,map.ply"
           << (s["depth_maps_written"].get<int>() > 0 ? ",depth/" : "") << "}\n";
@@ -376,6 +385,10 @@ Expected<bool> Run(RunOptions options, Context& ctx, int* exit_code) {
   recorder_options.begin_ns = begin;
   recorder_options.layout = *layout;
   recorder_options.poses_at = std::move(poses_at);
+  using World = recording::RunRecorderOptions::World;
+  recorder_options.world = options.gt_poses || options.gt_map ? World::kGroundTruth
+                           : options.world == "gravity"       ? World::kGravity
+                                                              : World::kFirstCamera;
   recorder_options.config_yaml = io::FormatConfigYaml(
       FlattenConfig(*config), "aavio effective configuration (" + VersionString() +
                                   ")\nfrom: " + config::DescribeSources(options.config) +
@@ -520,10 +533,21 @@ void RegisterRun(CLI::App& app, Context& ctx) {
   sub->add_option("--poses-at", options->poses_at,
                   "A file of stamps (first column; s or ns): the --format trajectory at these, "
                   "interpolated (e.g. EvSLAM's reference times)");
+  sub->add_option("--world", options->world,
+                  "The world of the trajectory and map.ply: first_camera (the first camera's "
+                  "frame, as ESVO) or gravity (that frame turned z-up along the gravity the run "
+                  "measured; needs an IMU with its extrinsic and 2 s of data)")
+      ->check(CLI::IsMember({"first_camera", "gravity"}))
+      ->capture_default_str();
   sub->add_flag("--quiet", options->quiet, "No progress output");
   AddConfigOptions(*sub, &options->config);
   sub->callback([&ctx, options] {
     ctx.action = [&ctx, options] {
+      if ((options->gt_poses || options->gt_map) && options->world == "gravity") {
+        ctx.err << "aavio run: --world gravity is for the odometry; with --gt-poses or --gt-map "
+                   "the run's world is the ground truth's\n";
+        return static_cast<int>(kExitUsage);
+      }
       if (options->gt_poses && options->gt_map) {
         ctx.err << "aavio run: --gt-poses (mapping only) and --gt-map (tracking only) exclude "
                    "each other; give neither for the full odometry\n";

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -13,6 +14,8 @@
 
 #include "aavio/common/format.hpp"
 #include "aavio/common/time.hpp"
+#include "aavio/io/ply.hpp"
+#include "aavio/io/trajectory_io.hpp"
 #include "cli.hpp"
 #include "cli_test_util.hpp"
 #include "tests/event_fixtures.hpp"
@@ -356,6 +359,65 @@ TEST(Cli, RunOdometryWritesItsOutputsAndIsDeterministic) {
 
 // README's path for a bag: `aavio run X.bag --calib DIR`, then `aavio eval --run` scores it
 // against the bag's own ground-truth pose topic with the calibration the run recorded.
+// --world gravity: the trajectory and map.ply of the same run, turned z-up by the gravity it
+// measured (needs 2 s of data); the summary says which world the files are in.
+TEST(Cli, RunWritesAGravityAlignedWorldOnRequest) {
+  const auto dir = testing::ScratchDir();
+  const std::string seq = (dir / "seq").string();
+  Result r =
+      RunAavio({"simulate", "--preset", "mini", "--duration", "2.6", "--out", seq, "--quiet"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  const std::filesystem::path camera = dir / "camera", gravity = dir / "gravity";
+  r = RunAavio({"run", seq, "--out", camera.string(), "--quiet"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  r = RunAavio({"run", seq, "--out", gravity.string(), "--quiet", "--world", "gravity"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  EXPECT_NE(r.out.find("world: z up along the measured gravity"), std::string::npos) << r.out;
+  auto summary = [](const std::filesystem::path& run) {
+    std::ifstream in(run / "summary.json");
+    return nlohmann::json::parse(in);
+  };
+  const nlohmann::json a = summary(camera), b = summary(gravity);
+  EXPECT_EQ(a["world"]["frame"], "first_camera");
+  ASSERT_EQ(b["world"]["frame"], "gravity") << b["world"];
+  const auto& q = b["world"]["q_world_first_camera_xyzw"];
+  const Eigen::Matrix3d R = Eigen::Quaterniond(q[3].get<double>(), q[0].get<double>(),
+                                               q[1].get<double>(), q[2].get<double>())
+                                .toRotationMatrix();
+  // The same rotation the first-camera run's summary gives, and gravity now straight down.
+  const auto& q_up = a["motion"]["gravity"]["q_up_world_xyzw"];
+  for (int k = 0; k < 4; ++k)
+    EXPECT_NEAR(q[k].get<double>(), q_up[k].get<double>(), 1e-12);
+  EXPECT_NEAR(b["motion"]["gravity"]["down_world"][2].get<double>(), -1.0, 1e-9);
+  // The simulated camera starts with y towards the ground.
+  EXPECT_GT((R * Eigen::Vector3d::UnitY()).dot(-Eigen::Vector3d::UnitZ()), 0.99);
+  Expected<std::vector<geometry::StampedPose>> p =
+      io::ReadTumTrajectory((camera / "stamped_traj_estimate.txt").string());
+  Expected<std::vector<geometry::StampedPose>> p_up =
+      io::ReadTumTrajectory((gravity / "stamped_traj_estimate.txt").string());
+  ASSERT_TRUE(p && p_up);
+  ASSERT_EQ(p->size(), p_up->size());
+  for (std::size_t i = 0; i < p->size(); ++i) {
+    EXPECT_LT((R * (*p)[i].T_world_body.t - (*p_up)[i].T_world_body.t).norm(), 1e-6) << i;
+    EXPECT_LT((R * (*p)[i].T_world_body.R - (*p_up)[i].T_world_body.R).norm(), 1e-6) << i;
+  }
+  Expected<io::ColouredCloud> cloud = io::ReadPly((camera / "map.ply").string());
+  Expected<io::ColouredCloud> cloud_up = io::ReadPly((gravity / "map.ply").string());
+  ASSERT_TRUE(cloud && cloud_up);
+  ASSERT_EQ(cloud->points.size(), cloud_up->points.size());
+  ASSERT_GT(cloud->points.size(), 100u);
+  for (std::size_t i = 0; i < cloud->points.size(); i += 97) {
+    const Eigen::Vector3d turned = R * cloud->points[i].cast<double>();
+    EXPECT_LT((turned - cloud_up->points[i].cast<double>()).norm(), 1e-4) << i;
+  }
+  // The error is the same (se3-aligned); with --gt-poses the world is the ground truth's.
+  EXPECT_NEAR(a["accuracy"]["ate_rmse_m"].get<double>(), b["accuracy"]["ate_rmse_m"].get<double>(),
+              1e-9);
+  r = RunAavio({"run", seq, "--out", (dir / "gt").string(), "--gt-poses", "--world", "gravity"});
+  EXPECT_EQ(r.code, kExitUsage);
+  EXPECT_NE(r.err.find("the run's world is the ground truth's"), std::string::npos) << r.err;
+}
+
 TEST(Cli, EvalScoresABagRunWithItsCalibrationAndTheBagsPoses) {
   const auto dir = testing::ScratchDir();
   const std::string seq = (dir / "seq").string();
