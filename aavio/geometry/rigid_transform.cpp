@@ -2,28 +2,9 @@
 
 #include <cmath>
 
+#include "aavio/geometry/rotation.hpp"
+
 namespace aavio::geometry {
-
-namespace {
-
-/// Left Jacobian of SO(3): V(φ) = I + (1 − cos θ)/θ² [φ]x + (θ − sin θ)/θ³ [φ]x².
-Eigen::Matrix3d LeftJacobianSO3(const Eigen::Vector3d& phi) {
-  const double theta2 = phi.squaredNorm();
-  const Eigen::Matrix3d W = Hat(phi);
-  double b;
-  double c;
-  if (theta2 < 1e-10) {
-    b = 0.5 - theta2 / 24.0;
-    c = 1.0 / 6.0 - theta2 / 120.0;
-  } else {
-    const double theta = std::sqrt(theta2);
-    b = (1.0 - std::cos(theta)) / theta2;
-    c = (theta - std::sin(theta)) / (theta2 * theta);
-  }
-  return Eigen::Matrix3d::Identity() + b * W + c * W * W;
-}
-
-}  // namespace
 
 RigidTransform RigidTransform::FromMatrix(const Eigen::Matrix<double, 3, 4>& Rt) {
   return {Rt.leftCols<3>(), Rt.col(3)};

@@ -36,19 +36,34 @@ Eigen::Matrix3d ExpSO3(const Eigen::Vector3d& w) {
   return Eigen::Matrix3d::Identity() + a * W + b * W * W;
 }
 
-Eigen::Matrix3d RightJacobianSO3(const Eigen::Vector3d& w) {
-  const double theta2 = w.squaredNorm();
-  const Eigen::Matrix3d W = Hat(w);
-  double b;  // (1 − cos θ) / θ²
-  double c;  // (θ − sin θ) / θ³
+namespace {
+
+// The two coefficients of SO(3)'s Jacobians: b = (1 − cos θ)/θ², c = (θ − sin θ)/θ³, by their
+// series below θ = 1e-4 (where the closed forms lose digits to cancellation).
+void JacobianCoefficients(double theta2, double* b, double* c) {
   if (theta2 < 1e-8) {
-    b = 0.5 - theta2 / 24.0;
-    c = 1.0 / 6.0 - theta2 / 120.0;
-  } else {
-    const double theta = std::sqrt(theta2);
-    b = (1.0 - std::cos(theta)) / theta2;
-    c = (theta - std::sin(theta)) / (theta2 * theta);
+    *b = 0.5 - theta2 / 24.0;
+    *c = 1.0 / 6.0 - theta2 / 120.0;
+    return;
   }
+  const double theta = std::sqrt(theta2);
+  *b = (1.0 - std::cos(theta)) / theta2;
+  *c = (theta - std::sin(theta)) / (theta2 * theta);
+}
+
+}  // namespace
+
+Eigen::Matrix3d LeftJacobianSO3(const Eigen::Vector3d& w) {
+  const Eigen::Matrix3d W = Hat(w);
+  double b = 0.0, c = 0.0;
+  JacobianCoefficients(w.squaredNorm(), &b, &c);
+  return Eigen::Matrix3d::Identity() + b * W + c * W * W;
+}
+
+Eigen::Matrix3d RightJacobianSO3(const Eigen::Vector3d& w) {
+  const Eigen::Matrix3d W = Hat(w);
+  double b = 0.0, c = 0.0;
+  JacobianCoefficients(w.squaredNorm(), &b, &c);
   return Eigen::Matrix3d::Identity() - b * W + c * W * W;
 }
 

@@ -20,6 +20,9 @@ Eigen::Vector3d Vee(const Eigen::Matrix3d& W);
 Eigen::Matrix3d ExpSO3(const Eigen::Vector3d& w);
 /// Rotation vector of R, angle in [0, π]. Accurate near 0 and near π.
 Eigen::Vector3d LogSO3(const Eigen::Matrix3d& R);
+/// The left Jacobian of SO(3): Exp(w + δ) ≈ Exp(Jl(w) δ)·Exp(w); also the V of SE(3)'s
+/// exponential, t = Jl(φ)·ρ.
+Eigen::Matrix3d LeftJacobianSO3(const Eigen::Vector3d& w);
 /// The right Jacobian of SO(3): Exp(w + δ) ≈ Exp(w)·Exp(Jr(w) δ) (Forster et al. 2017, eq. 8).
 Eigen::Matrix3d RightJacobianSO3(const Eigen::Vector3d& w);
 /// Its inverse: Log(Exp(w)·Exp(δ)) ≈ w + Jr⁻¹(w) δ. For |w| < π.

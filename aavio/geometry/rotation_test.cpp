@@ -12,7 +12,7 @@ Eigen::Vector3d RandomVector(std::mt19937& rng, double scale) {
   return {u(rng), u(rng), u(rng)};
 }
 
-TEST(Rotation, RightJacobiansMatchFiniteDifferences) {
+TEST(Rotation, JacobiansMatchFiniteDifferences) {
   std::mt19937 rng(3);
   for (const double scale : {1e-6, 1e-3, 0.3, 1.5, 3.0}) {
     for (int i = 0; i < 20; ++i) {
@@ -26,6 +26,14 @@ TEST(Rotation, RightJacobiansMatchFiniteDifferences) {
       }
       EXPECT_LT((InverseRightJacobianSO3(w) * Jr - Eigen::Matrix3d::Identity()).norm(), 1e-9)
           << "|w| = " << scale;
+      // The left Jacobian: Exp(w + δ) = Exp(Jl δ)·Exp(w); Jl(w) = Jr(−w).
+      const Eigen::Matrix3d Jl = LeftJacobianSO3(w);
+      for (int k = 0; k < 3; ++k) {
+        const Eigen::Vector3d d = 1e-7 * Eigen::Vector3d::Unit(k);
+        const Eigen::Vector3d column = LogSO3(ExpSO3(w + d) * ExpSO3(w).transpose()) / 1e-7;
+        EXPECT_LT((column - Jl.col(k)).norm(), 1e-6) << "|w| = " << scale;
+      }
+      EXPECT_EQ(Jl, RightJacobianSO3(-w));
     }
   }
 }
