@@ -35,7 +35,7 @@ const char* TrajectoryFormatName(TrajectoryFormat format) {
 Expected<TrajectoryFormat> TrajectoryFormatNamed(const std::string& name) {
   for (TrajectoryFormat f :
        {TrajectoryFormat::kAuto, TrajectoryFormat::kTum, TrajectoryFormat::kTumNs,
-        TrajectoryFormat::kEuroc, TrajectoryFormat::kEvslam}) {
+        TrajectoryFormat::kEuroc, TrajectoryFormat::kEvslam, TrajectoryFormat::kKitti}) {
     if (name == TrajectoryFormatName(f)) return f;
   }
   return InvalidArgument(

@@ -13,43 +13,30 @@
 
 namespace aavio::io {
 
-const char* TrajectoryLayoutName(TrajectoryLayout layout) {
-  switch (layout) {
-    case TrajectoryLayout::kTum:
-      return "tum";
-    case TrajectoryLayout::kKitti:
-      return "kitti";
-    case TrajectoryLayout::kEuroc:
-      return "euroc";
-    case TrajectoryLayout::kEvslam:
-      return "evslam";
-  }
-  return "?";
+Expected<TrajectoryFormat> WritableTrajectoryFormat(const std::string& name) {
+  Expected<TrajectoryFormat> format = TrajectoryFormatNamed(name);
+  if (format && *format != TrajectoryFormat::kAuto) return format;
+  return InvalidArgument("trajectory format '" + name +
+                         "' is none of tum, tum_ns, kitti, euroc, evslam");
 }
 
-Expected<TrajectoryLayout> TrajectoryLayoutNamed(const std::string& name) {
-  for (TrajectoryLayout l : {TrajectoryLayout::kTum, TrajectoryLayout::kKitti,
-                             TrajectoryLayout::kEuroc, TrajectoryLayout::kEvslam})
-    if (name == TrajectoryLayoutName(l)) return l;
-  return InvalidArgument("trajectory format '" + name + "' is none of tum, kitti, euroc, evslam");
-}
-
-std::string TrajectoryLayoutFileName(TrajectoryLayout layout) {
-  return std::string("trajectory_") + TrajectoryLayoutName(layout) +
-         (layout == TrajectoryLayout::kEuroc ? ".csv" : ".txt");
+std::string TrajectoryFileName(TrajectoryFormat format) {
+  return std::string("trajectory_") + TrajectoryFormatName(format) +
+         (format == TrajectoryFormat::kEuroc ? ".csv" : ".txt");
 }
 
 std::string FormatTrajectory(const std::vector<geometry::StampedPose>& poses,
                              const std::vector<geometry::StampedVelocity>& velocities,
-                             TrajectoryLayout layout) {
-  if (layout == TrajectoryLayout::kTum) return FormatTumTrajectory(poses);
+                             TrajectoryFormat format) {
+  if (format == TrajectoryFormat::kTum || format == TrajectoryFormat::kAuto)
+    return FormatTumTrajectory(poses);
   const bool with_velocity = velocities.size() == poses.size();
   std::string out;
-  if (layout == TrajectoryLayout::kEuroc) {
+  if (format == TrajectoryFormat::kEuroc) {
     out =
         "#timestamp [ns],p_RS_R_x [m],p_RS_R_y [m],p_RS_R_z [m],q_RS_w [],q_RS_x [],q_RS_y [],"
         "q_RS_z [],v_RS_R_x [m s^-1],v_RS_R_y [m s^-1],v_RS_R_z [m s^-1]\n";
-  } else if (layout == TrajectoryLayout::kEvslam) {
+  } else if (format == TrajectoryFormat::kEvslam) {
     out = "# timestamp tx ty tz qx qy qz qw vx vy vz (velocity in the camera frame, m/s)\n";
   }
   char line[512];
@@ -58,15 +45,15 @@ std::string FormatTrajectory(const std::vector<geometry::StampedPose>& poses,
     const Eigen::Quaterniond q = T.Quaternion();
     const Eigen::Vector3d v_body =
         with_velocity ? velocities[i].v_body_mps : Eigen::Vector3d::Zero();
-    switch (layout) {
-      case TrajectoryLayout::kKitti:
+    switch (format) {
+      case TrajectoryFormat::kKitti:
         std::snprintf(line, sizeof(line),
                       "%.9e %.9e %.9e %.9e %.9e %.9e %.9e %.9e %.9e %.9e %.9e %.9e\n", T.R(0, 0),
                       T.R(0, 1), T.R(0, 2), T.t.x(), T.R(1, 0), T.R(1, 1), T.R(1, 2), T.t.y(),
                       T.R(2, 0), T.R(2, 1), T.R(2, 2), T.t.z());
         out += line;
         break;
-      case TrajectoryLayout::kEuroc: {
+      case TrajectoryFormat::kEuroc: {
         const Eigen::Vector3d v = T.R * v_body;
         std::snprintf(line, sizeof(line),
                       "%lld,%.9f,%.9f,%.9f,%.9f,%.9f,%.9f,%.9f,%.9f,%.9f,%.9f\n",
@@ -75,13 +62,20 @@ std::string FormatTrajectory(const std::vector<geometry::StampedPose>& poses,
         out += line;
         break;
       }
-      case TrajectoryLayout::kEvslam:
+      case TrajectoryFormat::kEvslam:
         std::snprintf(line, sizeof(line), " %.9f %.9f %.9f %.9f %.9f %.9f %.9f %.9f %.9f %.9f\n",
                       T.t.x(), T.t.y(), T.t.z(), q.x(), q.y(), q.z(), q.w(), v_body.x(), v_body.y(),
                       v_body.z());
         out += FormatSecondsNs(poses[i].t_ns) + line;
         break;
-      case TrajectoryLayout::kTum:
+      case TrajectoryFormat::kTumNs:
+        std::snprintf(line, sizeof(line), "%lld %.9f %.9f %.9f %.9f %.9f %.9f %.9f\n",
+                      static_cast<long long>(poses[i].t_ns), T.t.x(), T.t.y(), T.t.z(), q.x(),
+                      q.y(), q.z(), q.w());
+        out += line;
+        break;
+      case TrajectoryFormat::kTum:
+      case TrajectoryFormat::kAuto:
         break;
     }
   }
@@ -90,9 +84,9 @@ std::string FormatTrajectory(const std::vector<geometry::StampedPose>& poses,
 
 Status WriteTrajectory(const std::string& path, const std::vector<geometry::StampedPose>& poses,
                        const std::vector<geometry::StampedVelocity>& velocities,
-                       TrajectoryLayout layout) {
-  AAVIO_RETURN_IF_ERROR(WriteTextFile(path, FormatTrajectory(poses, velocities, layout)));
-  if (layout != TrajectoryLayout::kKitti) return Status::Ok();
+                       TrajectoryFormat format) {
+  AAVIO_RETURN_IF_ERROR(WriteTextFile(path, FormatTrajectory(poses, velocities, format)));
+  if (format != TrajectoryFormat::kKitti) return Status::Ok();
   std::string times;
   for (const geometry::StampedPose& p : poses)
     times += FormatSecondsNs(p.t_ns) + "\n";

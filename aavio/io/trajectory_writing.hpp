@@ -8,27 +8,29 @@
 
 #include "aavio/common/status.hpp"
 #include "aavio/geometry/velocity.hpp"
+#include "aavio/io/trajectory_io.hpp"
 
 namespace aavio::io {
 
-/// tum: `t tx ty tz qx qy qz qw` (s); kitti: the 3×4 matrix [R|t] row by row, no stamps (with
-/// `<name>_times.txt` beside it, KITTI's times.txt); euroc: `t[ns],x,y,z,qw,qx,qy,qz,vx,vy,vz`
-/// with the velocity in the world frame (as EuRoC's state_groundtruth_estimate0); evslam:
-/// `t x y z qx qy qz qw vx vy vz` (s), the velocity in the body (camera) frame.
-enum class TrajectoryLayout { kTum, kKitti, kEuroc, kEvslam };
-Expected<TrajectoryLayout> TrajectoryLayoutNamed(const std::string& name);
-const char* TrajectoryLayoutName(TrajectoryLayout layout);
+/// Writes io::TrajectoryFormat's layouts (the ones `aavio eval` reads). tum: `t tx ty tz qx qy qz
+/// qw` (s; kAuto writes it too); tum_ns: the same with integer nanosecond stamps; kitti: the 3×4
+/// matrix [R|t] row by row, no stamps (with `<name>_times.txt` beside it, KITTI's times.txt);
+/// euroc: `t[ns],x,y,z,qw,qx,qy,qz,vx,vy,vz` with the velocity in the world frame (as EuRoC's
+/// state_groundtruth_estimate0); evslam: `t x y z qx qy qz qw vx vy vz` (s), the velocity in the
+/// body (camera) frame.
+/// A format a trajectory can be written in, by name (every one but auto).
+Expected<TrajectoryFormat> WritableTrajectoryFormat(const std::string& name);
 /// The file name `aavio run` gives it: trajectory_tum.txt, trajectory_kitti.txt, …
-std::string TrajectoryLayoutFileName(TrajectoryLayout layout);
+std::string TrajectoryFileName(TrajectoryFormat format);
 
 /// `velocities`: one per pose (geometry::EstimateVelocities), or empty for the layouts without.
 std::string FormatTrajectory(const std::vector<geometry::StampedPose>& poses,
                              const std::vector<geometry::StampedVelocity>& velocities,
-                             TrajectoryLayout layout);
+                             TrajectoryFormat format);
 /// Writes it at `path`; KITTI also writes its stamps as `<path without .txt>_times.txt`.
 Status WriteTrajectory(const std::string& path, const std::vector<geometry::StampedPose>& poses,
                        const std::vector<geometry::StampedVelocity>& velocities,
-                       TrajectoryLayout layout);
+                       TrajectoryFormat format);
 
 /// `t vx vy vz wx wy wz` per pose: body-frame linear (m/s) and angular (rad/s) velocity.
 std::string FormatVelocities(const std::vector<geometry::StampedVelocity>& velocities);

@@ -22,19 +22,34 @@ std::vector<geometry::StampedPose> Poses() {
   return poses;
 }
 
-// Every layout aavio writes reads back (TUM, EuRoC and EvSLAM through the auto-detecting reader)
-// to the same poses; KITTI's matrix rows and its times file are as KITTI's tools expect.
-TEST(TrajectoryWriting, EveryLayoutReadsBack) {
+// Every format aavio writes reads back (TUM in s and ns, EuRoC and EvSLAM through the
+// auto-detecting reader) to the same poses; KITTI's matrix rows and its times file are as KITTI's
+// tools expect. One set of format names for reading and writing; auto is for reading only.
+TEST(TrajectoryWriting, FormatNamesAreTheReadersAndAllButAutoWrite) {
+  for (TrajectoryFormat format :
+       {TrajectoryFormat::kAuto, TrajectoryFormat::kTum, TrajectoryFormat::kTumNs,
+        TrajectoryFormat::kEuroc, TrajectoryFormat::kEvslam, TrajectoryFormat::kKitti}) {
+    const std::string name = TrajectoryFormatName(format);
+    Expected<TrajectoryFormat> read = TrajectoryFormatNamed(name);
+    ASSERT_TRUE(read.ok()) << name << ": " << read.status().message();
+    EXPECT_EQ(*read, format);
+    EXPECT_EQ(WritableTrajectoryFormat(name).ok(), format != TrajectoryFormat::kAuto) << name;
+  }
+  EXPECT_FALSE(TrajectoryFormatNamed("csv").ok());
+  EXPECT_EQ(TrajectoryFileName(TrajectoryFormat::kEuroc), "trajectory_euroc.csv");
+}
+
+TEST(TrajectoryWriting, EveryFormatReadsBack) {
   const auto poses = Poses();
   const auto velocities = geometry::EstimateVelocities(poses, 20'000'000);
   const auto dir = testing::ScratchDir();
-  for (TrajectoryLayout layout :
-       {TrajectoryLayout::kTum, TrajectoryLayout::kEuroc, TrajectoryLayout::kEvslam}) {
-    const std::string path = (dir / TrajectoryLayoutFileName(layout)).string();
-    ASSERT_TRUE(WriteTrajectory(path, poses, velocities, layout).ok());
+  for (TrajectoryFormat format : {TrajectoryFormat::kTum, TrajectoryFormat::kTumNs,
+                                  TrajectoryFormat::kEuroc, TrajectoryFormat::kEvslam}) {
+    const std::string path = (dir / TrajectoryFileName(format)).string();
+    ASSERT_TRUE(WriteTrajectory(path, poses, velocities, format).ok());
     Expected<std::vector<geometry::StampedPose>> back =
         ReadTrajectory(path, TrajectoryFormat::kAuto);
-    ASSERT_TRUE(back.ok()) << TrajectoryLayoutName(layout) << ": " << back.status().message();
+    ASSERT_TRUE(back.ok()) << TrajectoryFormatName(format) << ": " << back.status().message();
     ASSERT_EQ(back->size(), poses.size());
     for (std::size_t i = 0; i < poses.size(); ++i) {
       EXPECT_EQ((*back)[i].t_ns, poses[i].t_ns);
@@ -48,7 +63,7 @@ TEST(TrajectoryWriting, EveryLayoutReadsBack) {
             std::string::npos)
       << evslam;
   const std::string kitti_path = (dir / "trajectory_kitti.txt").string();
-  ASSERT_TRUE(WriteTrajectory(kitti_path, poses, {}, TrajectoryLayout::kKitti).ok());
+  ASSERT_TRUE(WriteTrajectory(kitti_path, poses, {}, TrajectoryFormat::kKitti).ok());
   const std::string kitti = testing::ReadAll(kitti_path);
   EXPECT_EQ(std::count(kitti.begin(), kitti.end(), '\n'), 5);
   EXPECT_NE(kitti.find("1.000000000e+00 "), std::string::npos);  // the t of pose 2, first row

@@ -352,14 +352,14 @@ nlohmann::json RunRecorder::WriteMotion(const std::optional<imu::GravityDirectio
                     {"span_s", g.span_s},
                     {"q_up_world_xyzw", {q.x(), q.y(), q.z(), q.w()}}};
   }
-  if (options_.layout == io::TrajectoryLayout::kTum && options_.poses_at.empty()) return j;
-  const fs::path path = out / io::TrajectoryLayoutFileName(options_.layout);
+  if (options_.format == io::TrajectoryFormat::kTum && options_.poses_at.empty()) return j;
+  const fs::path path = out / io::TrajectoryFileName(options_.format);
   if (options_.poses_at.empty()) {
-    keep(io::WriteTrajectory(path.string(), trajectory_, velocities, options_.layout));
+    keep(io::WriteTrajectory(path.string(), trajectory_, velocities, options_.format));
     return j;
   }
   const geometry::Sampled sampled = geometry::SampleAt(trajectory_, velocities, options_.poses_at);
-  keep(io::WriteTrajectory(path.string(), sampled.poses, sampled.velocities, options_.layout));
+  keep(io::WriteTrajectory(path.string(), sampled.poses, sampled.velocities, options_.format));
   j["poses_at"] = {{"requested", options_.poses_at.size()},
                    {"written", sampled.poses.size()},
                    {"missing", sampled.missing.size()},

@@ -64,10 +64,10 @@ struct RunRecorderOptions {
   std::string config_yaml;    ///< the effective configuration, written as config.yaml
   std::string version;        ///< summary.json "version": the program's, with its git revision
   TimeNs begin_ns = 0;        ///< the data time the run starts at
-  /// Also write the trajectory in this layout (io::TrajectoryLayoutFileName), at `poses_at`
+  /// Also write the trajectory in this format (io::TrajectoryFileName), at `poses_at`
   /// (interpolated, geometry::SampleAt) when that is not empty, else at every pose. kTum with
   /// no stamps writes nothing more (stamped_traj_estimate.txt is TUM).
-  io::TrajectoryLayout layout = io::TrajectoryLayout::kTum;
+  io::TrajectoryFormat format = io::TrajectoryFormat::kTum;
   std::vector<TimeNs> poses_at;
   /// The world of the poses the recorder is given, and of the files it writes (summary.json
   /// `world.frame`).

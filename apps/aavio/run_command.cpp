@@ -220,8 +220,7 @@ void PrintRun(const recording::RunRecord& record, const RunOptions& options,
     if (s.contains("motion") && s["motion"].contains("poses_at"))
       trajectories += s["motion"]["poses_at"]["file"].get<std::string>() + ",";
     else if (options.format != "tum")
-      trajectories +=
-          io::TrajectoryLayoutFileName(*io::TrajectoryLayoutNamed(options.format)) + ",";
+      trajectories += io::TrajectoryFileName(*io::WritableTrajectoryFormat(options.format)) + ",";
   }
   const auto world = s.find("world");
   if (world != s.end() && world->contains("gravity_unavailable")) {
@@ -318,10 +317,10 @@ Expected<bool> Run(RunOptions options, Context& ctx, int* exit_code) {
   const TimeNs begin = reader->start_ns() + SecondsToNs(options.start_s);
   const TimeNs end =
       options.duration_s > 0.0 ? begin + SecondsToNs(options.duration_s) : reader->end_ns();
-  Expected<io::TrajectoryLayout> layout = io::TrajectoryLayoutNamed(options.format);
-  if (!layout) {
+  Expected<io::TrajectoryFormat> format = io::WritableTrajectoryFormat(options.format);
+  if (!format) {
     *exit_code = kExitUsage;
-    return layout.status().WithContext("--format");
+    return format.status().WithContext("--format");
   }
   std::vector<TimeNs> poses_at;
   if (!options.poses_at.empty()) {
@@ -383,7 +382,7 @@ Expected<bool> Run(RunOptions options, Context& ctx, int* exit_code) {
       std::filesystem::absolute(opened->description.calibration).lexically_normal().string();
   recorder_options.version = VersionString();
   recorder_options.begin_ns = begin;
-  recorder_options.layout = *layout;
+  recorder_options.format = *format;
   recorder_options.poses_at = std::move(poses_at);
   using World = recording::RunRecorderOptions::World;
   recorder_options.world = options.gt_poses || options.gt_map ? World::kGroundTruth
@@ -527,8 +526,9 @@ void RegisterRun(CLI::App& app, Context& ctx) {
                   "run from a short sequence, for memory and speed over time (no accuracy)")
       ->check(NumberIn(1, 100000));
   sub->add_option("--format", options->format,
-                  "Also write the trajectory as trajectory_FORMAT.txt: tum, kitti (+ _times.txt), "
-                  "euroc (.csv, world-frame velocity) or evslam (camera-frame velocity)")
+                  "Also write the trajectory as trajectory_FORMAT.txt: tum, tum_ns (nanosecond "
+                  "stamps), kitti (+ _times.txt), euroc (.csv, world-frame velocity) or evslam "
+                  "(camera-frame velocity)")
       ->capture_default_str();
   sub->add_option("--poses-at", options->poses_at,
                   "A file of stamps (first column; s or ns): the --format trajectory at these, "
