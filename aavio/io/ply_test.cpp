@@ -13,13 +13,6 @@
 namespace aavio::io {
 namespace {
 
-std::string Slurp(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream bytes;
-  bytes << in.rdbuf();
-  return bytes.str();
-}
-
 TEST(Ply, RoundTripsPointsColoursAndComment) {
   const std::string path = (testing::ScratchDir() / "map.ply").string();
   const std::vector<Eigen::Vector3f> points = {
@@ -59,7 +52,7 @@ TEST(Ply, WriterStreamsBatchesIntoTheSameFile) {
   EXPECT_EQ(read->points, points);
   EXPECT_EQ(read->colours, colours);
   EXPECT_EQ(read->comment, "streamed");
-  EXPECT_NE(Slurp(path).find("element vertex 3\ncomment" + std::string(19, ' ') + "\n"),
+  EXPECT_NE(testing::ReadAll(path).find("element vertex 3\ncomment" + std::string(19, ' ') + "\n"),
             std::string::npos);
   // Mismatched batches and a second Close are refused; an empty cloud is a valid file.
   Expected<PlyWriter> empty = PlyWriter::Open(path);

@@ -16,13 +16,6 @@
 namespace aavio::sim {
 namespace {
 
-std::string Bytes(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::string bytes(std::filesystem::file_size(path), '\0');
-  in.read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-  return bytes;
-}
-
 TEST(Simulator, WritesAReadableSequenceAndSameSeedGivesSameBytes) {
   const auto a = testing::ScratchDir(), b = testing::ScratchDir();
   for (const auto& dir : {a, b}) {
@@ -39,7 +32,9 @@ TEST(Simulator, WritesAReadableSequenceAndSameSeedGivesSameBytes) {
   for (const char* file :
        {"events/left/events.h5", "events/right/events.h5", "imu.txt", "groundtruth.txt",
         "depth/disparity_000003.png", "calibration/left.yaml"}) {
-    EXPECT_EQ(Bytes(a / "seq" / file), Bytes(b / "seq" / file)) << file;
+    const std::string bytes = testing::ReadAll(a / "seq" / file);
+    EXPECT_FALSE(bytes.empty()) << file;
+    EXPECT_EQ(bytes, testing::ReadAll(b / "seq" / file)) << file;
   }
   // The readers understand it: events in time order within the sensor, IMU, ground truth.
   Expected<io::SequenceDescription> d = io::DescribeSequence((a / "seq").string());
@@ -168,11 +163,14 @@ TEST(Simulator, WorldEffectsChangeTheWorldNotTheMotion) {
       << reports[1].world_effects;
   EXPECT_EQ(reports[2].world_effects, "1 moving objects");
   for (std::size_t k = 1; k < dirs.size(); ++k) {
-    for (const char* file : {"imu.txt", "groundtruth.txt"})
-      EXPECT_EQ(Bytes(dirs[0] / file), Bytes(dirs[k] / file)) << file;
+    for (const char* file : {"imu.txt", "groundtruth.txt"}) {
+      const std::string bytes = testing::ReadAll(dirs[0] / file);
+      EXPECT_FALSE(bytes.empty()) << file;
+      EXPECT_EQ(bytes, testing::ReadAll(dirs[k] / file)) << file;
+    }
   }
-  EXPECT_NE(Bytes(dirs[0] / "depth/disparity_000003.png"),
-            Bytes(dirs[2] / "depth/disparity_000003.png"));
+  EXPECT_NE(testing::ReadAll(dirs[0] / "depth/disparity_000003.png"),
+            testing::ReadAll(dirs[2] / "depth/disparity_000003.png"));
   SimulationRequest bad;
   bad.out_dir = (testing::ScratchDir() / "x").string();
   bad.world_effects = {"rain"};

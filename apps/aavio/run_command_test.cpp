@@ -141,13 +141,7 @@ TEST(Cli, RunTracksAgainstGroundTruthMaps) {
   EXPECT_GT(nlohmann::json::parse(r.out)["pairs"].get<int>(), 90);
 }
 
-std::string ReadAll(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::string text, line;
-  while (std::getline(in, line))
-    text += line + "\n";
-  return text;
-}
+using aavio::testing::ReadAll;
 
 // The full odometry: its outputs, no NaN pose, and the same trajectory bit for bit with one and
 // with two threads.
@@ -508,7 +502,7 @@ TEST(Cli, EvalScoresABagRunWithItsCalibrationAndTheBagsPoses) {
   r = RunAavio(
       {"run", bag, "--calib", moved.string(), "--out", evslam, "--overwrite", "--format", "g2o"});
   EXPECT_EQ(r.code, kExitUsage);
-  EXPECT_NE(r.err.find("none of tum, kitti, euroc, evslam"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("none of tum, tum_ns, kitti, euroc, evslam"), std::string::npos) << r.err;
   // A summary.json edited by hand: entries of the wrong type are read as missing, never a crash.
   testing::WriteFile(std::filesystem::path(out) / "summary.json",
                      "{\"sequence\": \"" + bag + "\", \"calibration\": \"" + moved.string() +
