@@ -388,7 +388,7 @@ Expected<RunRecord> RunRecorder::Finish(bool interrupted, TimeNs end_ns,
     csv_.close();
     if (!csv_) keep(IoError((out / run_files::kTimings).string() + ": write failed (disk full?)"));
   }
-  // Gravity, measured in the first camera's world; with gravity_world the files are turned z-up.
+  // Gravity, measured in the first camera's world; with World::kGravity the files are turned z-up.
   std::optional<imu::GravityDirection> gravity;
   if (T_imu_cam_) gravity = gravity_.Estimate(trajectory_, T_imu_cam_->R);
   std::optional<Eigen::Matrix3d> R_out_first;

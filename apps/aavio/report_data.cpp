@@ -53,6 +53,7 @@ json QuaternionXyzw(const Eigen::Matrix3d& R) {
 // The velocity of `velocities` (sorted, one per pose) nearest `t_ns`, if valid.
 const geometry::StampedVelocity* Nearest(const std::vector<geometry::StampedVelocity>& velocities,
                                          TimeNs t_ns) {
+  if (velocities.empty()) return nullptr;
   auto it =
       std::lower_bound(velocities.begin(), velocities.end(), t_ns,
                        [](const geometry::StampedVelocity& v, TimeNs t) { return v.t_ns < t; });
