@@ -49,10 +49,11 @@ def imu_of(run):
 
 
 def table(head, rows):
-    out = "<table><tr>" + "".join("<th>%s</th>" % html.escape(h) for h in head) + "</tr>\n"
+    out = ('<div class="wide"><table><tr>' + "".join("<th>%s</th>" % html.escape(h) for h in head) +
+           "</tr>\n")
     for r in rows:
         out += "<tr>" + "".join("<td>%s</td>" % html.escape(str(c)) for c in r) + "</tr>\n"
-    return out + "</table>\n"
+    return out + "</table></div>\n"
 
 
 def summary_table(runs):
@@ -172,7 +173,7 @@ def main():
              "<style>body{font-family:sans-serif;margin:2em;max-width:1500px}"
              "table{border-collapse:collapse;font-size:0.9em;margin:1em 0}td,th{border:1px solid "
              "#bbb;padding:3px 8px;text-align:right}th{background:#eee}td:first-child{text-align:"
-             "left}img{max-width:100%}figure{margin:1.5em 0}figcaption{color:#444}</style>"
+             "left}img{max-width:100%}figure{margin:1.5em 0}figcaption{color:#444}.wide{overflow-x:auto}</style>"
              "</head><body>",
              "<h1>aavio report</h1>", summary_table(runs), "<ul>"]
     for run in runs:
