@@ -154,7 +154,8 @@ Expected<json> DepthData(const fs::path& run_depth_dir, const recording::RunGrou
   if (scored.empty() || gt_frames->empty()) return out;
   const int shown = std::min<int>(kReportDepthFrames, static_cast<int>(scored.size()));
   for (int k = 0; k < shown; ++k) {
-    // Evenly spread, the first and the last included; away from the first map (still thin).
+    // Spread evenly: the middle of each of `shown` equal stretches of the run (the first map,
+    // still thin, is not one of them).
     const std::size_t f =
         shown == 1 ? 0 : static_cast<std::size_t>((k + 0.5) * scored.size() / shown);
     const io::GtDepthEntry& entry = scored[f];
