@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "aavio/config/config_sources.hpp"
+#include "aavio/config/scene_measurement.hpp"
 #include "aavio/io/calibration.hpp"
 #include "aavio/io/sequence.hpp"
 #include "aavio/io/trajectory_io.hpp"
@@ -30,14 +31,16 @@ Status Stream(const std::string& path, bool real_time, const std::string& out) {
   if (!sequence) return sequence.status();
   Expected<io::LoadedCalibration> calibration = io::LoadCalibration(sequence->calibration);
   if (!calibration) return calibration.status();
-  config::ConfigSources sources;
-  const std::string why = config::ConfigureForRig(calibration->rig, &sources);
-  std::fprintf(stderr, "preset %s (%s)\n", sources.preset.c_str(), why.c_str());
-  Expected<pipeline::OdometryConfig> config = config::ResolveOdometryConfig(sources);
-  if (!config) return config.status();
   Expected<std::unique_ptr<io::SequenceReader>> reader =
       io::SequenceReader::Open(*sequence, io::SequenceReaderOptions{});
   if (!reader) return reader.status();
+  config::ConfigSources sources;  // no preset named: the rig and the scene's depth choose one
+  Expected<std::string> why = config::ConfigureForSequence(
+      reader->get(), calibration->rig, (*reader)->start_ns(), (*reader)->end_ns(), &sources);
+  if (!why) return why.status();
+  std::fprintf(stderr, "preset %s (%s)\n", sources.preset.c_str(), why->c_str());
+  Expected<pipeline::OdometryConfig> config = config::ResolveOdometryConfig(sources);
+  if (!config) return config.status();
 
   Expected<std::unique_ptr<pipeline::LiveOdometry>> live = pipeline::LiveOdometry::Create(
       calibration->rig, *config, (*reader)->start_ns(),

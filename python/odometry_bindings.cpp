@@ -1,5 +1,6 @@
 // Odometry: LiveOdometry from Python — push numpy arrays of events and IMU samples, get the
-// trajectory; run(): a whole sequence through it, as `aavio run` (bit-identical trajectory).
+// trajectory; run(): a whole sequence through the library's loop, as `aavio run` (the same
+// trajectory).
 #include <pybind11/stl.h>
 
 #include <mutex>
@@ -9,6 +10,7 @@
 #include "aavio/io/calibration.hpp"
 #include "aavio/io/sequence.hpp"
 #include "aavio/pipeline/live_odometry.hpp"
+#include "aavio/pipeline/sequence_run.hpp"
 #include "bindings.hpp"
 
 namespace aavio::python {
@@ -43,16 +45,14 @@ std::vector<std::string> OverridesOf(const py::object& set) {
 
 class PyOdometry {
  public:
-  /// `scene`: the depth of the scene, when measured ahead (a sequence read whole).
   PyOdometry(const std::string& calibration, TimeNs start_ns, const std::string& preset,
              const std::vector<std::string>& config_files, const py::object& set, bool real_time,
-             double max_lag_s, bool wait_for_imu,
-             const std::optional<pipeline::SceneDepth>& scene = {}) {
+             double max_lag_s, bool wait_for_imu) {
     const io::LoadedCalibration loaded = Unwrap(io::LoadCalibration(calibration));
     sources_.preset = preset;
     sources_.files = config_files;
     sources_.overrides = OverridesOf(set);
-    preset_reason_ = config::ConfigureForRig(loaded.rig, &sources_, scene);
+    preset_reason_ = config::ConfigureForRig(loaded.rig, &sources_);
     const pipeline::OdometryConfig config = Unwrap(config::ResolveOdometryConfig(sources_));
     live_ = Unwrap(pipeline::LiveOdometry::Create(
         loaded.rig, config, start_ns,
@@ -89,21 +89,6 @@ class PyOdometry {
       status = live_->PushImu(samples);
     }
     Check(status);
-  }
-
-  /// A reader's packet, the cameras complete up to `complete_ns` (C++ only: no GIL needed).
-  /// Events from `complete_ns` on are left out (no tick before it uses them); IMU samples
-  /// past it stay (the last tick's window ends at the first sample after it).
-  Status PushPacket(io::SensorPacket& packet, TimeNs complete_ns) {
-    auto cut = [complete_ns](std::vector<events::Event>& v) {
-      while (!v.empty() && v.back().t_ns >= complete_ns)
-        v.pop_back();
-    };
-    cut(packet.left);
-    cut(packet.right);
-    AAVIO_RETURN_IF_ERROR(live_->PushImu(packet.imu));
-    AAVIO_RETURN_IF_ERROR(live_->PushEvents(events::Camera::kLeft, packet.left, complete_ns));
-    return live_->PushEvents(events::Camera::kRight, packet.right, complete_ns);
   }
 
   void Finish(std::optional<TimeNs> end_ns) {
@@ -164,44 +149,37 @@ Trajectory Run(const std::string& sequence_path, const std::string& calibration,
   const TimeNs begin = reader->start_ns() + SecondsToNs(start_s);
   const TimeNs end = duration_s ? begin + SecondsToNs(*duration_s) : reader->end_ns();
   if (start_s > 0.0) Check(reader->Seek(begin));
-  // As `aavio run`: with no preset named, the scene's first moments help choose one.
-  std::optional<pipeline::SceneDepth> scene;
-  if (preset.empty()) {
-    scene = Unwrap(config::MeasureSceneDepth(
-        reader.get(), Unwrap(io::LoadCalibration(description.calibration)).rig, begin, end));
-  }
-  // A sequence without an IMU stream: the ticks do not wait for one.
-  PyOdometry odometry(description.calibration, begin, preset, config_files, set, false, 0.05,
-                      description.imu.has_value(), scene);
-  // As `aavio run` feeds the odometry: the reader's packets in order.
-  Status status = Status::Ok();
-  bool interrupted = false;
+  // As `aavio run`: the configuration for the rig (with no preset named, the scene's first
+  // moments help choose one), the odometry fed by the library's loop.
+  config::ConfigSources sources;
+  sources.preset = preset;
+  sources.files = config_files;
+  sources.overrides = OverridesOf(set);
+  const geometry::StereoRig rig = Unwrap(io::LoadCalibration(description.calibration)).rig;
+  Unwrap(config::ConfigureForSequence(reader.get(), rig, begin, end, &sources));
+  const pipeline::OdometryConfig config = Unwrap(config::ResolveOdometryConfig(sources));
+  Trajectory trajectory;
+  pipeline::Odometry odometry(rig, config, begin);
+  odometry.on_tick = [&trajectory](const pipeline::OdometryTick& tick) {
+    trajectory.poses.push_back({tick.t_ns, tick.T_world_cam});
+    trajectory.status.push_back(tracking::TrackingStatusName(tick.status));
+  };
+  pipeline::SequenceRunHooks hooks;
+  // Ctrl-C: Python's handler runs here, every 100 packets (0.1 s of data).
+  std::int64_t packets = 0;
+  hooks.stop = [&packets] {
+    if (++packets % 100 != 0) return false;
+    py::gil_scoped_acquire acquire;
+    return PyErr_CheckSignals() != 0;
+  };
+  pipeline::SequenceRun run;
   {
     py::gil_scoped_release release;
-    io::SensorPacket packet;
-    for (std::int64_t packets = 1;; ++packets) {
-      Expected<bool> more = reader->Next(&packet);
-      if (!more) {
-        status = more.status();
-        break;
-      }
-      if (!*more || packet.t_begin_ns >= end) break;
-      status = odometry.PushPacket(packet, std::min(packet.t_end_ns, end));
-      if (!status.ok()) break;
-      // Ctrl-C: Python's handler runs here, every 100 packets (0.1 s of data).
-      if (packets % 100 == 0) {
-        py::gil_scoped_acquire acquire;
-        if (PyErr_CheckSignals() != 0) {
-          interrupted = true;
-          break;
-        }
-      }
-    }
+    run = pipeline::RunOdometry(*reader, begin, end, &odometry, hooks);
   }
-  if (interrupted) throw py::error_already_set();  // KeyboardInterrupt
-  Check(status);
-  odometry.Finish(end);
-  return odometry.trajectory();
+  if (run.interrupted) throw py::error_already_set();  // KeyboardInterrupt
+  Check(run.stopped_by);
+  return trajectory;
 }
 
 }  // namespace

@@ -32,4 +32,17 @@ Expected<std::optional<pipeline::SceneDepth>> MeasureSceneDepth(io::SequenceRead
   return found;
 }
 
+Expected<std::string> ConfigureForSequence(io::SequenceReader* reader,
+                                           const geometry::StereoRig& rig, TimeNs begin_ns,
+                                           TimeNs end_ns, ConfigSources* sources) {
+  std::optional<pipeline::SceneDepth> scene;
+  if (sources->preset.empty()) {
+    Expected<std::optional<pipeline::SceneDepth>> measured =
+        MeasureSceneDepth(reader, rig, begin_ns, end_ns);
+    if (!measured) return measured.status();
+    scene = *measured;
+  }
+  return ConfigureForRig(rig, sources, scene);
+}
+
 }  // namespace aavio::config

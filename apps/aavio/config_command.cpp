@@ -104,20 +104,21 @@ int RunConfig(ConfigOptions options, Context& ctx) {
     for (const std::string& warning : calibration->warnings)
       ctx.err << "warning: " << warning << "\n";
     // A sequence's first moments show how far its scene is, for the preset.
-    std::optional<pipeline::SceneDepth> scene;
     if (options.sources.preset.empty() && !io::LoadCalibration(options.for_path).ok()) {
       Expected<OpenedSequence> opened = OpenSequence(options.for_path, "");
-      Expected<std::optional<pipeline::SceneDepth>> measured =
-          opened ? config::MeasureSceneDepth(opened->reader.get(), calibration->rig,
-                                             opened->reader->start_ns(), opened->reader->end_ns())
-                 : Expected<std::optional<pipeline::SceneDepth>>(opened.status());
-      if (!measured) {
-        ctx.err << "aavio config: error: " << measured.status().message() << "\n";
+      Expected<std::string> why =
+          opened ? config::ConfigureForSequence(opened->reader.get(), calibration->rig,
+                                                opened->reader->start_ns(),
+                                                opened->reader->end_ns(), &options.sources)
+                 : Expected<std::string>(opened.status());
+      if (!why) {
+        ctx.err << "aavio config: error: " << why.status().message() << "\n";
         return kExitError;
       }
-      scene = *measured;
+      preset_reason = *why;
+    } else {
+      preset_reason = config::ConfigureForRig(calibration->rig, &options.sources);
     }
-    preset_reason = config::ConfigureForRig(calibration->rig, &options.sources, scene);
   }
   Expected<pipeline::OdometryConfig> config = config::ResolveOdometryConfig(options.sources);
   if (!config) {

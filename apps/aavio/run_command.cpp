@@ -20,11 +20,11 @@
 #include "aavio/common/format.hpp"
 #include "aavio/config/scene_measurement.hpp"
 #include "aavio/io/config_yaml.hpp"
-#include "aavio/io/prefetching_reader.hpp"
 #include "aavio/io/trajectory_io.hpp"
 #include "aavio/io/trajectory_writing.hpp"
 #include "aavio/pipeline/mapping_front_end.hpp"
 #include "aavio/pipeline/odometry.hpp"
+#include "aavio/pipeline/sequence_run.hpp"
 #include "aavio/recording/run_recorder.hpp"
 #include "cli.hpp"
 #include "config_options.hpp"
@@ -73,16 +73,11 @@ Status ConfigureForSequence(OpenedSequence& opened, TimeNs begin, TimeNs end, Ru
     for (const std::string& warning : opened.calibration.warnings)
       ctx.err << "warning: " << warning << "\n";
   }
-  std::optional<pipeline::SceneDepth> scene;
-  if (options->config.preset.empty()) {
-    Expected<std::optional<pipeline::SceneDepth>> measured =
-        config::MeasureSceneDepth(opened.reader.get(), opened.calibration.rig, begin, end);
-    if (!measured) return measured.status();
-    scene = *measured;
-  }
-  const std::string why = config::ConfigureForRig(opened.calibration.rig, &options->config, scene);
-  if (!why.empty() && !options->quiet) {
-    ctx.err << "aavio run: no --preset given; using '" << options->config.preset << "' (" << why
+  Expected<std::string> why = config::ConfigureForSequence(
+      opened.reader.get(), opened.calibration.rig, begin, end, &options->config);
+  if (!why) return why.status();
+  if (!why->empty() && !options->quiet) {
+    ctx.err << "aavio run: no --preset given; using '" << options->config.preset << "' (" << *why
             << ")\n";
   }
   return Status::Ok();
@@ -235,71 +230,48 @@ void PrintRun(const recording::RunRecord& record, const RunOptions& options,
           << (s["depth_maps_written"].get<int>() > 0 ? ",depth/" : "") << "}\n";
 }
 
-struct Fed {
-  TimeNs last_t = 0;  ///< the data time processed up to
-  bool interrupted = false;
-  Status stopped_by = Status::Ok();  ///< an error that ended the run early (input or output)
-  std::int64_t imu_samples = 0;      ///< IMU samples read, and the first and last stamp
-  TimeNs imu_first_ns = 0, imu_last_ns = 0;
-};
-
-// Feeds the packets of [begin, end) to `process` (decoded on a thread of their own, up to 50
-// packets ahead), counting them in the recorder, with progress on a terminal; Ctrl-C stops, and
-// so does an error, which is returned in Fed with the time reached.
-Fed FeedPackets(io::SequenceReader* reader, TimeNs begin, TimeNs end,
-                recording::RunRecorder* recorder,
-                const std::function<Status(const io::SensorPacket&, TimeNs)>& process,
-                bool progress, Context& ctx) {
-  io::PrefetchingReader prefetching(reader, 50);
-  const auto wall_start = Clock::now();
-  io::SensorPacket packet;
-  Fed fed{begin, false};
-  g_interrupted.store(false);
-  auto previous_int = std::signal(SIGINT, OnInterrupt);
-  auto previous_term = std::signal(SIGTERM, OnInterrupt);
-  Status status = Status::Ok();
-  for (std::int64_t packets = 0;; ++packets) {
-    if (g_interrupted.load()) {
-      fed.interrupted = true;
-      break;
-    }
-    const auto read_start = Clock::now();
-    Expected<bool> more = prefetching.Next(&packet);
-    if (!more) {
-      status = more.status();
-      break;
-    }
-    if (!*more || packet.t_begin_ns >= end) break;
-    recorder->AddPacket(
-        packet.left.size() + packet.right.size(),
-        std::chrono::duration<double, std::milli>(Clock::now() - read_start).count());
-    const TimeNs t_end = std::min(packet.t_end_ns, end);
+// What `aavio run` adds around the library's loop: Ctrl-C stops it, each packet is counted in the
+// recorder, and on a terminal the progress is shown.
+pipeline::SequenceRunHooks RunHooks(recording::RunRecorder* recorder, bool progress, Context& ctx) {
+  pipeline::SequenceRunHooks hooks;
+  hooks.stop = [] { return g_interrupted.load(); };
+  hooks.on_packet = [recorder](const io::SensorPacket& packet, double read_ms) {
+    recorder->AddPacket(packet.left.size() + packet.right.size(), read_ms);
     recorder->AddImu(packet.imu);
-    if (!packet.imu.empty()) {
-      if (fed.imu_samples == 0) fed.imu_first_ns = packet.imu.front().t_ns;
-      fed.imu_samples += static_cast<std::int64_t>(packet.imu.size());
-      fed.imu_last_ns = packet.imu.back().t_ns;
-    }
-    status = process(packet, t_end);
-    if (!status.ok()) break;
-    fed.last_t = t_end;
-    if (progress && packets % 50 == 0) {
-      const double done = NsToSeconds(fed.last_t - begin);
-      const double wall = std::chrono::duration<double>(Clock::now() - wall_start).count();
+  };
+  if (progress) {
+    hooks.on_progress = [recorder, &ctx](const pipeline::SequenceRun& run) {
+      const double done = NsToSeconds(run.reached_ns - run.begin_ns);
       const std::map<std::string, int>& counts = recorder->status_counts();
       auto count = [&](const char* key) { return counts.count(key) ? counts.at(key) : 0; };
       ctx.err << StrFormat("\r%.1f / %.1f s of data, %.2fx real time, tracking ok %d, lost %d   ",
-                           done, NsToSeconds(end - begin), wall > 0 ? done / wall : 0.0,
-                           count("ok"), count("lost"))
+                           done, NsToSeconds(run.end_ns - run.begin_ns),
+                           run.wall_s > 0 ? done / run.wall_s : 0.0, count("ok"), count("lost"))
               << std::flush;
-    }
+    };
   }
-  std::signal(SIGINT, previous_int);
-  std::signal(SIGTERM, previous_term);
-  if (progress) ctx.err << "\r" << std::string(90, ' ') << "\r";
-  fed.stopped_by = status;
-  return fed;
+  return hooks;
 }
+
+// Ctrl-C and SIGTERM set g_interrupted while a run is on; the handlers before are back after.
+class InterruptHandlers {
+ public:
+  InterruptHandlers()
+      : previous_int_(std::signal(SIGINT, OnInterrupt)),
+        previous_term_(std::signal(SIGTERM, OnInterrupt)) {
+    g_interrupted.store(false);
+  }
+  ~InterruptHandlers() {
+    std::signal(SIGINT, previous_int_);
+    std::signal(SIGTERM, previous_term_);
+  }
+  InterruptHandlers(const InterruptHandlers&) = delete;
+  InterruptHandlers& operator=(const InterruptHandlers&) = delete;
+
+ private:
+  using Handler = void (*)(int);
+  Handler previous_int_, previous_term_;
+};
 
 // Returns whether the run was interrupted (its outputs hold what was done); on an error,
 // `exit_code` says whether it is a wrong argument.
@@ -423,25 +395,32 @@ Expected<bool> Run(RunOptions options, Context& ctx, int* exit_code) {
     }
   }
 
-  Fed fed = FeedPackets(
-      reader, begin, end, &recorder,
-      [&](const io::SensorPacket& packet, TimeNs t_end) {
-        Status status = Status::Ok();
-        if (odometry) {
-          status = odometry->Process(packet.left, packet.right, packet.imu, t_end);
-          recorder.AddStage("event_insertion", odometry->last_insertion_ms(),
-                            static_cast<double>(packet.left.size() + packet.right.size()));
-        } else {
-          status = mapping->Process(packet.left, packet.right, t_end);
-        }
-        return status.ok() ? callback_status : status;
-      },
-      !options.quiet && isatty(STDERR_FILENO), ctx);
-  if (odometry && fed.stopped_by.ok()) {
-    // The ticks still waiting for IMU samples past the last packet (a positive time offset).
-    Status finished = odometry->Finish();
-    fed.stopped_by = finished.ok() ? callback_status : finished;
+  const bool progress = !options.quiet && isatty(STDERR_FILENO);
+  pipeline::SequenceRunHooks hooks = RunHooks(&recorder, progress, ctx);
+  pipeline::SequenceRun fed;
+  {
+    InterruptHandlers interrupts;
+    // What the recorder's callbacks met (a full disk) stops the run after that packet.
+    hooks.after_packet = [&](const io::SensorPacket& packet) {
+      if (odometry) {
+        recorder.AddStage("event_insertion", odometry->last_insertion_ms(),
+                          static_cast<double>(packet.left.size() + packet.right.size()));
+      }
+      return callback_status;
+    };
+    if (odometry) {
+      fed = pipeline::RunOdometry(*reader, begin, end, &*odometry, hooks);
+    } else {
+      fed = pipeline::RunSequence(
+          *reader, begin, end,
+          [&](const io::SensorPacket& packet, TimeNs complete_ns) {
+            return mapping->Process(packet.left, packet.right, complete_ns);
+          },
+          hooks);
+    }
   }
+  if (progress) ctx.err << "\r" << std::string(90, ' ') << "\r";
+  if (fed.stopped_by.ok()) fed.stopped_by = callback_status;  // met by Odometry::Finish's ticks
   odometry.reset();  // a mapping cycle still running finishes here
 
   // Stopped by an error (a full disk, a corrupt stretch of the input): what was done until then
@@ -467,12 +446,12 @@ Expected<bool> Run(RunOptions options, Context& ctx, int* exit_code) {
                           {"translation_m_rmse", tracking_error->translation_m_rmse},
                           {"pairs", tracking_error->pairs}};
   }
-  Expected<recording::RunRecord> record = recorder.Finish(fed.interrupted, fed.last_t, extra);
+  Expected<recording::RunRecord> record = recorder.Finish(fed.interrupted, fed.reached_ns, extra);
   if (!fed.stopped_by.ok()) {
     return Status(
         fed.stopped_by.code(),
         StrFormat("%s\nthe run stopped there, after %.2f s of data; %s %s",
-                  fed.stopped_by.message().c_str(), NsToSeconds(fed.last_t - begin),
+                  fed.stopped_by.message().c_str(), NsToSeconds(fed.reached_ns - begin),
                   options.out_dir.c_str(),
                   record ? "holds what was done until then"
                          : ("holds what could be written of it (" + record.status().message() + ")")
