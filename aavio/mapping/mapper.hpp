@@ -17,6 +17,7 @@
 #include "aavio/mapping/depth_fusion.hpp"
 #include "aavio/mapping/local_map.hpp"
 #include "aavio/mapping/mapping_config.hpp"
+#include "aavio/mapping/temporal_partners.hpp"
 #include "aavio/mapping/temporal_stereo.hpp"
 
 namespace aavio::mapping {
@@ -25,36 +26,6 @@ namespace aavio::mapping {
 /// a first map may have (BootstrapConfig::kMinRegistrationPoints). A sparse scene gives 80–130
 /// samples a cycle, so a larger floor would leave it with its first map for good.
 inline constexpr int kMinSamples = static_cast<int>(BootstrapConfig::kMinRegistrationPoints);
-/// Mapping observations kept for the temporal partner search (1 s at 20 Hz).
-inline constexpr int kTemporalHistoryLength = 20;
-/// The cross-check partner's distance beyond the first partner, in units of min_translation_m:
-/// baselines about 1 : 1.5. At 1 (1 : 2) a mismatch by one period of a periodic texture in the
-/// first partner and by two in the second triangulate to the same depth and pass the check (the
-/// DSEC twins' paved road, cells of 1.2 m: 8 % of the temporal points off by 30 % or more).
-inline constexpr double kCrossCheckSpacing = 0.5;
-
-struct PosedObservation {
-  std::shared_ptr<const events::Observation> obs;
-  geometry::RigidTransform T_world_obs;
-};
-
-/// The newest observation of `history` (oldest first) whose camera centre is at least
-/// `min_translation_m` from T_world_now's; nullptr if none.
-const PosedObservation* FindTemporalPartner(std::span<const PosedObservation> history,
-                                            const geometry::RigidTransform& T_world_now,
-                                            double min_translation_m);
-
-/// Temporal stereo's partners: `main` as FindTemporalPartner with min_translation_m; `check`
-/// (only with cross_check_px > 0) the newest older observation at least kCrossCheckSpacing ×
-/// min_translation_m from `main`. Either may be null.
-struct TemporalPartners {
-  const PosedObservation* main = nullptr;
-  const PosedObservation* check = nullptr;
-};
-TemporalPartners FindTemporalPartners(std::span<const PosedObservation> history,
-                                      const geometry::RigidTransform& T_world_now,
-                                      const TemporalStereoConfig& config);
-
 /// The edge samples a mapping cycle uses: the observation's, away from the border, at most
 /// `max_points`, moved onto the newest edge (`snap_to_edge_px`).
 std::vector<events::EdgeSample> MappingSamples(const events::Observation& obs,
@@ -99,19 +70,8 @@ class Mapper {
   /// cross-check partner (null: temporal matches are kept unchecked).
   Status Update(const PosedObservation& now, const PosedObservation* partner,
                 MappingCycleReport* report, const PosedObservation* check = nullptr);
-  /// Forgets the map and the remembered observations.
+  /// Forgets the map (the temporal partners are the caller's: TemporalHistory).
   void Reset();
-
-  /// Keeps a mapping observation's AA map and pose as a later temporal partner (the newest
-  /// kTemporalHistoryLength are kept). Not to be called concurrently with TemporalPartnersFor,
-  /// but it may run while an Update does.
-  void Remember(const PosedObservation& observation);
-  /// The temporal partners (FindTemporalPartners) among the remembered observations, as copies:
-  /// they stay valid while later observations are remembered (e.g. for an Update on a thread).
-  struct Partners {
-    std::optional<PosedObservation> main, check;
-  };
-  Partners TemporalPartnersFor(const geometry::RigidTransform& T_world_now) const;
 
   LocalMapPtr local_map() const { return local_map_; }
 
@@ -126,7 +86,6 @@ class Mapper {
   DepthFusion fusion_;
   bool initialized_ = false;
   LocalMapPtr local_map_;
-  std::vector<PosedObservation> history_;  // AA maps and poses only, oldest first
 };
 
 }  // namespace aavio::mapping

@@ -12,23 +12,7 @@
 namespace aavio::mapping {
 namespace {
 
-// A fronto-parallel textured plane at disparity 16 px (z = f·b/16 = 20.1 m) seen by the stereo
-// pair: every cycle's map must hold that depth, from SGM first and then from matching + fusion.
-std::shared_ptr<events::Observation> PlaneObservation() {
-  auto obs = std::make_shared<events::Observation>();
-  obs->t_ns = 0;
-  cv::Mat left = testing::WaveTexture(160, 120, 7), right = testing::WaveTexture(160, 120, 7, 16.0);
-  left.convertTo(obs->ts_left, CV_8U);
-  right.convertTo(obs->ts_right, CV_8U);
-  obs->aa_map = obs->ts_left.clone();
-  cv::Sobel(left, obs->grad_u, CV_32F, 1, 0, 3, 1.0 / 8.0);
-  cv::Sobel(left, obs->grad_v, CV_32F, 0, 1, 3, 1.0 / 8.0);
-  for (std::uint16_t v = 12; v < 108; v += 3) {
-    for (std::uint16_t u = 40; u < 150; u += 3)
-      obs->samples.push_back({u, v, static_cast<float>(u), static_cast<float>(v), 2});
-  }
-  return obs;
-}
+using testing::PlaneObservation;
 
 TEST(Mapper, MapsAPlaneFromSgmThenCycles) {
   const RectifiedStereo stereo = testing::SmallStereo();
@@ -240,75 +224,6 @@ TEST(Mapper, TemporalPointsMoveOntoTheirSnappedSamples) {
     EXPECT_EQ(points[i].v, expected[i].y()) << i;
     EXPECT_EQ(points[i].rho, 0.1);
   }
-}
-
-// Observations 0.3 m apart along x (oldest first): the partner is the newest at least
-// min_translation_m from now, the check partner the newest older one at least
-// kCrossCheckSpacing × min_translation_m beyond it.
-TEST(Mapper, FindsTheTemporalPartnerAndTheCrossCheckPartner) {
-  std::vector<PosedObservation> history(6);
-  for (int i = 0; i < 6; ++i)
-    history[static_cast<std::size_t>(i)].T_world_obs.t = {0.3 * i, 0.0, 0.0};
-  geometry::RigidTransform now;
-  now.t = {1.8, 0.0, 0.0};  // 0.3 m beyond the newest
-  TemporalStereoConfig config;
-  config.min_translation_m = 0.5;
-  TemporalPartners partners = FindTemporalPartners(history, now, config);
-  EXPECT_EQ(partners.main, &history[4]);  // 0.6 m back
-  EXPECT_EQ(partners.check, nullptr);     // cross-check off
-  config.cross_check_px = 1.0;
-  partners = FindTemporalPartners(history, now, config);
-  EXPECT_EQ(partners.main, &history[4]);
-  EXPECT_EQ(partners.check, &history[3]);  // 0.3 m beyond it: baselines 0.6 and 0.9 m
-  config.min_translation_m = 2.0;
-  partners = FindTemporalPartners(history, now, config);
-  EXPECT_EQ(partners.main, nullptr);  // every observation within 1.8 m
-  config.min_translation_m = 0.9;
-  partners = FindTemporalPartners(history, now, config);
-  EXPECT_EQ(partners.main, &history[3]);   // 0.9 m back
-  EXPECT_EQ(partners.check, &history[1]);  // 0.6 m beyond it, the first at least 0.45 m
-  now.t = {0.7, 0.0, 0.0};                 // every observation within 0.9 m
-  EXPECT_EQ(FindTemporalPartners(history, now, config).main, nullptr);
-}
-
-// The mapper keeps the temporal history itself: the newest kTemporalHistoryLength observations,
-// only their AA maps, partners handed out as copies, all forgotten on Reset.
-TEST(Mapper, RemembersTheTemporalHistoryAndHandsOutPartnerCopies) {
-  const RectifiedStereo stereo = testing::SmallStereo();
-  const cv::Mat valid(stereo.height, stereo.width, CV_8UC1, cv::Scalar(255));
-  MappingConfig config;
-  config.temporal_stereo.min_translation_m = 0.5;
-  config.temporal_stereo.cross_check_px = 1.0;
-  Mapper mapper(stereo, valid, config);
-  for (int i = 0; i < kTemporalHistoryLength + 5; ++i) {
-    auto obs = std::make_shared<events::Observation>();
-    obs->t_ns = i;
-    obs->aa_map = cv::Mat(4, 4, CV_32FC1, cv::Scalar(i));
-    obs->ts_left = cv::Mat(4, 4, CV_8UC1, cv::Scalar(1));
-    PosedObservation posed{obs, {}};
-    posed.T_world_obs.t = {0.3 * i, 0.0, 0.0};
-    mapper.Remember(posed);
-  }
-  geometry::RigidTransform now;
-  now.t = {0.3 * (kTemporalHistoryLength + 5), 0.0, 0.0};
-  Mapper::Partners partners = mapper.TemporalPartnersFor(now);
-  ASSERT_TRUE(partners.main.has_value());
-  ASSERT_TRUE(partners.check.has_value());
-  const TimeNs newest = kTemporalHistoryLength + 4;
-  EXPECT_EQ(partners.main->obs->t_ns, newest - 1);  // 0.6 m back
-  EXPECT_EQ(partners.check->obs->t_ns, newest - 2);
-  EXPECT_EQ(partners.main->obs->aa_map.at<float>(0, 0), static_cast<float>(newest - 1));
-  EXPECT_TRUE(partners.main->obs->ts_left.empty());  // only the AA map is kept
-  // Far back: only the newest kTemporalHistoryLength are kept, the oldest gone.
-  now.t = {0.0, 0.0, 0.0};
-  config.temporal_stereo.min_translation_m = 0.0;
-  partners = mapper.TemporalPartnersFor(now);
-  ASSERT_TRUE(partners.main.has_value());
-  EXPECT_EQ(partners.main->obs->t_ns, newest);
-  // The copies outlive later observations and a Reset.
-  mapper.Reset();
-  EXPECT_EQ(partners.main->obs->t_ns, newest);
-  EXPECT_FALSE(mapper.TemporalPartnersFor(now).main.has_value());
 }
 
 }  // namespace

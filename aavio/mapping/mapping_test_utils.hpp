@@ -1,11 +1,14 @@
 #pragma once
-// Synthetic stereo images for the mapping tests: a smooth random texture and its shifted copies.
+// Synthetic stereo images for the mapping tests: a smooth random texture and its shifted copies,
+// and a textured plane as an observation.
 
 #include <cmath>
+#include <memory>
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 #include <random>
 
+#include "aavio/events/observation.hpp"
 #include "aavio/mapping/rectified_stereo.hpp"
 
 namespace aavio::mapping::testing {
@@ -61,6 +64,25 @@ inline cv::Mat Shifted(const cv::Mat& image, double dx, double dy) {
   cv::Mat out;
   cv::remap(image, out, map_x, map_y, cv::INTER_LINEAR, cv::BORDER_REPLICATE);
   return out;
+}
+
+/// A fronto-parallel textured plane at disparity 16 px (z = f·b/16 = 20.1 m) seen by the
+/// SmallStereo pair, as an observation with edge samples on a grid: every map of it, from SGM and
+/// from mapping cycles, must hold that depth.
+inline std::shared_ptr<events::Observation> PlaneObservation() {
+  auto obs = std::make_shared<events::Observation>();
+  obs->t_ns = 0;
+  cv::Mat left = WaveTexture(160, 120, 7), right = WaveTexture(160, 120, 7, 16.0);
+  left.convertTo(obs->ts_left, CV_8U);
+  right.convertTo(obs->ts_right, CV_8U);
+  obs->aa_map = obs->ts_left.clone();
+  cv::Sobel(left, obs->grad_u, CV_32F, 1, 0, 3, 1.0 / 8.0);
+  cv::Sobel(left, obs->grad_v, CV_32F, 0, 1, 3, 1.0 / 8.0);
+  for (std::uint16_t v = 12; v < 108; v += 3) {
+    for (std::uint16_t u = 40; u < 150; u += 3)
+      obs->samples.push_back({u, v, static_cast<float>(u), static_cast<float>(v), 2});
+  }
+  return obs;
 }
 
 }  // namespace aavio::mapping::testing

@@ -12,6 +12,7 @@ MappingFrontEnd::MappingFrontEnd(const geometry::StereoRig& rig, const OdometryC
       stereo_(mapping::RectifiedStereo::FromRig(rig)),
       builder_(rectification_, rig.width(), rig.height(), RepresentationConfigOf(config), start_ns),
       mapper_(stereo_, rectification_.left.valid_mask, config.mapping),
+      history_(config.mapping.temporal_stereo),
       camera_{rig.width(), rig.height(), rig.focal_px(), rig.cx_left(), rig.cy()},
       decay_(config.time_surface.decay_ms, config.time_surface.adaptive_decay),
       tick_ns_(SecondsToNs(1.0 / config.time_surface.rate_hz)),
@@ -61,17 +62,16 @@ Status MappingFrontEnd::Tick(TimeNs t_ns) {
       const Status init = mapper_.Initialize(now);
       ran = cycle.bootstrap = init.ok();  // too few points: the next cycle tries again
     } else {
-      const mapping::Mapper::Partners partners = mapper_.TemporalPartnersFor(*pose);
-      AAVIO_RETURN_IF_ERROR(mapper_.Update(now, partners.main ? &*partners.main : nullptr,
-                                           &cycle.report,
-                                           partners.check ? &*partners.check : nullptr));
+      const mapping::TemporalHistory::Partners partners = history_.PartnersFor(*pose);
+      AAVIO_RETURN_IF_ERROR(
+          mapper_.Update(now, partners.main_ptr(), &cycle.report, partners.check_ptr()));
     }
     if (cycle.bootstrap || cycle.report.published) cycle.map = mapper_.local_map();
     if (ran && on_cycle) on_cycle(cycle);
   }
 
   // A cycle's AA map and pose: a later cycle's temporal partner.
-  if (cycle_tick) mapper_.Remember(now);
+  if (cycle_tick) history_.Remember(now);
   return Status::Ok();
 }
 

@@ -12,6 +12,7 @@
 #include "aavio/geometry/pose_buffer.hpp"
 #include "aavio/geometry/rectification.hpp"
 #include "aavio/mapping/mapper.hpp"
+#include "aavio/mapping/temporal_partners.hpp"
 #include "aavio/pipeline/odometry_config.hpp"
 #include "aavio/tracking/edge_age.hpp"
 
@@ -54,6 +55,7 @@ class MappingFrontEnd {
   mapping::RectifiedStereo stereo_;
   events::RepresentationBuilder builder_;
   mapping::Mapper mapper_;
+  mapping::TemporalHistory history_;  // the cycles' AA maps and poses: temporal partners
   tracking::Camera camera_;
   tracking::AdaptiveDecay decay_;  // τ from the age of the events at the map's edges, as odometry
   TimeNs tick_ns_, next_tick_ns_;

@@ -17,6 +17,13 @@ tracking::Camera CameraOf(const geometry::StereoRig& rig) {
   return {rig.width(), rig.height(), rig.focal_px(), rig.cx_left(), rig.cy()};
 }
 
+// The mapping period: a whole number of ticks.
+TimeNs CycleNs(const OdometryConfig& config) {
+  const int ticks = std::max(
+      1, static_cast<int>(std::lround(config.time_surface.rate_hz / config.mapping.rate_hz)));
+  return SecondsToNs(1.0 / config.time_surface.rate_hz) * ticks;
+}
+
 }  // namespace
 
 Odometry::Odometry(const geometry::StereoRig& rig, const OdometryConfig& config, TimeNs start_ns,
@@ -30,15 +37,16 @@ Odometry::Odometry(const geometry::StereoRig& rig, const OdometryConfig& config,
                static_cast<std::uint64_t>(config.pipeline.random_seed)),
       camera_(CameraOf(rig)),
       decay_(config.time_surface.decay_ms, config.time_surface.adaptive_decay),
-      mapper_(stereo_, rectification_.left.valid_mask, config.mapping),
+      mapping_(stereo_, rectification_.left.valid_mask, config.mapping,
+               MappingRunner::ModeOf(config.pipeline), CycleNs(config)),
+      history_(config.mapping.temporal_stereo),
       imu_offset_ns_(SecondsToNs(config.imu.time_offset_s)),
       last_t_end_ns_(start_ns),
       inertial_check_(rig.T_imu_rect_left().value_or(geometry::RigidTransform())),
       tick_ns_(SecondsToNs(1.0 / config.time_surface.rate_hz)),
       next_tick_ns_(start_ns + tick_ns_),
       last_tick_ns_(start_ns),
-      cycle_ns_(tick_ns_ * std::max(1, static_cast<int>(std::lround(config.time_surface.rate_hz /
-                                                                    config.mapping.rate_hz)))),
+      cycle_ns_(CycleNs(config)),
       next_cycle_ns_(start_ns + cycle_ns_),
       run_mapping_(run_mapping),
       last_event_ns_(start_ns),
@@ -46,24 +54,7 @@ Odometry::Odometry(const geometry::StereoRig& rig, const OdometryConfig& config,
   tracker_.Reset(start_ns, T_world_start);
 }
 
-Odometry::~Odometry() {
-  if (pending_cycle_.valid()) pending_cycle_.wait();
-}
-
-// The finished cycle's map goes to tracking (with `wait`, after it finishes).
-Status Odometry::CollectCycle(OdometryTick* tick, bool wait) {
-  if (!pending_cycle_.valid()) return Status::Ok();
-  if (!wait && pending_cycle_.wait_for(std::chrono::seconds(0)) != std::future_status::ready)
-    return Status::Ok();
-  CycleResult result = pending_cycle_.get();
-  AAVIO_RETURN_IF_ERROR(result.status);
-  tick->mapped = true;
-  tick->mapping = result.report;
-  tick->map = result.map;
-  tick->map_observation = result.observation;
-  if (result.map) PublishToTracking(result.map);  // none while the FIFO fills
-  return Status::Ok();
-}
+Odometry::~Odometry() = default;  // a mapping cycle still running is waited for
 
 Status Odometry::Process(std::span<const events::Event> left, std::span<const events::Event> right,
                          std::span<const imu::ImuSample> imu, TimeNs t_end_ns, TickPolicy policy) {
@@ -106,7 +97,7 @@ Status Odometry::SkipEventGap(TimeNs resume_ns) {
   // What the camera did meanwhile is unknown: mapping starts again at the held pose (a
   // re-initialisation if there was a map; before the first one, events starting late, it is not).
   if (run_mapping_) {
-    gap_restarts_mapping_ = mapper_.initialized();
+    gap_restarts_mapping_ = mapping_.initialized();
     Reinitialise(last_tick_ns_, T_world_held_, /*keep_velocity=*/false);
   } else {
     tracker_.Reset(last_tick_ns_, T_world_held_);
@@ -188,8 +179,8 @@ std::vector<imu::ImuSample> Odometry::ImuWindow(TimeNs t_ns) {
 
 void Odometry::Reinitialise(TimeNs t_ns, const geometry::RigidTransform& T_world_cam,
                             bool keep_velocity) {
-  if (pending_cycle_.valid()) pending_cycle_.get();  // a cycle of the old map: dropped
-  mapper_.Reset();
+  mapping_.Reset();  // a cycle of the old map still running is dropped
+  history_.Clear();
   PublishToTracking(nullptr);
   tracker_.Reset(t_ns, T_world_cam, keep_velocity);
   inertial_check_.Restart();
@@ -197,122 +188,111 @@ void Odometry::Reinitialise(TimeNs t_ns, const geometry::RigidTransform& T_world
 }
 
 Status Odometry::Tick(TimeNs t_ns, int skipped_ticks) {
+  const bool cycle_due = CycleDue(t_ns);
   auto obs = std::make_shared<events::Observation>();
-  // The right time surface, AA map and samples only where mapping may run: a bootstrap, or a
-  // mapping cycle's tick (and where a ground-truth map is built from the samples, without mapping).
-  // Mapping cycles are due on a fixed grid of data time (every rate_hz/mapping.rate_hz ticks).
-  const bool cycle_due = t_ns >= next_cycle_ns_;
+  OdometryTick tick;
+  tick.skipped_ticks = skipped_ticks;
+  AAVIO_RETURN_IF_ERROR(Observe(t_ns, cycle_due, obs.get(), &tick));
+  if (before_tick) before_tick(*obs);
+  AAVIO_RETURN_IF_ERROR(TakeFinishedCycle(t_ns, &tick));
+  const tracking::TrackingResult tracked = Track(t_ns, *obs, &tick);
+  if (!ImuContradicts(t_ns, tracked, &tick)) {
+    if (tracked.status == tracking::TrackingStatus::kOk) MeasureEdgeAge(tracked.T_world_cur, *obs);
+    if (run_mapping_) AAVIO_RETURN_IF_ERROR(Map(t_ns, cycle_due, obs, tracked, &tick));
+  }
+  if (on_tick) on_tick(tick);
+  return Status::Ok();
+}
+
+bool Odometry::CycleDue(TimeNs t_ns) {
+  const bool due = t_ns >= next_cycle_ns_;
   while (next_cycle_ns_ <= t_ns)
     next_cycle_ns_ += cycle_ns_;
-  const bool maps_here = run_mapping_ && (!mapper_.initialized() || cycle_due);
+  return due;
+}
+
+Status Odometry::Observe(TimeNs t_ns, bool cycle_due, events::Observation* obs,
+                         OdometryTick* tick) {
+  const bool maps_here = run_mapping_ && (!mapping_.initialized() || cycle_due);
   AAVIO_RETURN_IF_ERROR(builder_.Build(
-      t_ns, obs.get(),
+      t_ns, obs,
       {.right_ts = maps_here, .edges = maps_here || !run_mapping_, .decay_ms = decay_.decay_ms()}));
   ++ticks_;
-  OdometryTick tick;
-  tick.t_ns = t_ns;
-  tick.skipped_ticks = skipped_ticks;
-  tick.new_events_left = obs->new_events_left;
-  tick.new_events_right = obs->new_events_right;
-  tick.dropped_events = builder_.dropped_events();
-  tick.representation = obs->timings;
-  if (before_tick) before_tick(*obs);
-  if (config_.pipeline.real_time) {
-    AAVIO_RETURN_IF_ERROR(CollectCycle(&tick, /*wait=*/false));
-  } else if (pending_cycle_.valid() && t_ns - pending_cycle_t_ns_ >= cycle_ns_) {
-    // Concurrent mapping: the cycle started one cycle ago reaches tracking now, however long
-    // it took in wall time.
-    const auto start = std::chrono::steady_clock::now();
-    AAVIO_RETURN_IF_ERROR(CollectCycle(&tick, /*wait=*/true));
-    tick.mapping_wait_ms =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  }
+  tick->t_ns = t_ns;
+  tick->new_events_left = obs->new_events_left;
+  tick->new_events_right = obs->new_events_right;
+  tick->dropped_events = builder_.dropped_events();
+  tick->representation = obs->timings;
+  return Status::Ok();
+}
 
+Status Odometry::TakeFinishedCycle(TimeNs t_ns, OdometryTick* tick) {
+  Expected<std::optional<MappingRunner::Cycle>> finished =
+      mapping_.Collect(t_ns, &tick->mapping_wait_ms);
+  if (!finished) return finished.status();
+  if (*finished) ApplyCycle(**finished, tick);
+  return Status::Ok();
+}
+
+void Odometry::ApplyCycle(const MappingRunner::Cycle& cycle, OdometryTick* tick) {
+  tick->mapped = true;
+  tick->mapping = cycle.report;
+  tick->map = cycle.map;
+  tick->map_observation = cycle.observation;
+  if (cycle.map) PublishToTracking(cycle.map);  // none while the FIFO fills
+}
+
+tracking::TrackingResult Odometry::Track(TimeNs t_ns, const events::Observation& obs,
+                                         OdometryTick* tick) {
   const std::vector<imu::ImuSample> window = ImuWindow(t_ns);
   motion_evidence_.Add(window);
   inertial_check_.AddSamples(window);
   const tracking::TrackingResult tracked =
-      tracker_.Track(*obs, rectification_.left.valid_mask, window);
-  tick.T_world_cam = tracked.T_world_cur;
+      tracker_.Track(obs, rectification_.left.valid_mask, window);
+  tick->T_world_cam = tracked.T_world_cur;
   T_world_held_ = tracked.T_world_cur;
-  tick.gap_before = std::exchange(pending_gap_, std::nullopt);
-  tick.reinitialised = tick.gap_before && gap_restarts_mapping_;
-  tick.status = tracked.status;
-  tick.lost_reason = tracked.lost_reason;
-  // A tracked pose that the accelerometer contradicts is lost, and the map that misled it goes.
-  const bool imu_used = config_.imu.mode != imu::ImuMode::kOff && imu_seen_;
-  if (imu_used && run_mapping_ && tracked.status == tracking::TrackingStatus::kOk) {
+  tick->gap_before = std::exchange(pending_gap_, std::nullopt);
+  tick->reinitialised = tick->gap_before && gap_restarts_mapping_;
+  tick->status = tracked.status;
+  tick->lost_reason = tracked.lost_reason;
+  tick->gyro_bias = tracker_.gyro_bias();
+  return tracked;
+}
+
+bool Odometry::ImuContradicts(TimeNs t_ns, const tracking::TrackingResult& tracked,
+                              OdometryTick* tick) {
+  if (ImuUsed() && run_mapping_ && tracked.status == tracking::TrackingStatus::kOk) {
     const auto gravity =
         inertial_check_.AddTrackedPose(t_ns, tracked.T_world_cur, tracker_.gyro_bias());
     if (gravity && !gravity->agrees) {
-      tick.status = tracking::TrackingStatus::kLost;
-      tick.lost_reason = tracking::LostReason::kImuDisagrees;
-      tick.gyro_bias = tracker_.gyro_bias();
-      Reinitialise(t_ns, tick.T_world_cam, /*keep_velocity=*/false);
-      tick.reinitialised = true;
-      if (on_tick) on_tick(tick);
-      return Status::Ok();
+      tick->status = tracking::TrackingStatus::kLost;
+      tick->lost_reason = tracking::LostReason::kImuDisagrees;
+      Reinitialise(t_ns, tick->T_world_cam, /*keep_velocity=*/false);
+      tick->reinitialised = true;
+      return true;
     }
   } else {
     inertial_check_.Restart();
   }
-  tick.registration_iterations = tracked.registration.iterations;
-  tick.tracking_ms = tracked.prediction_ms + tracked.registration_ms;
-  tick.prediction_ms = tracked.prediction_ms;
-  tick.gyro_bias = tracker_.gyro_bias();
-  tick.imu_state = tracker_.imu_state();
-  if (tracked.status == tracking::TrackingStatus::kOk) MeasureEdgeAge(tracked.T_world_cur, *obs);
-  if (!run_mapping_) {
-    if (on_tick) on_tick(tick);
-    return Status::Ok();
-  }
-  const mapping::PosedObservation now{obs, tracked.T_world_cur};
+  tick->registration_iterations = tracked.registration.iterations;
+  tick->tracking_ms = tracked.prediction_ms + tracked.registration_ms;
+  tick->prediction_ms = tracked.prediction_ms;
+  tick->imu_state = tracker_.imu_state();
+  return false;
+}
 
-  if (!mapper_.initialized()) {
-    // Bootstrap (SGM) on this tick at the current pose; too few points: try the next tick. A
-    // small first map needs the IMU to show motion, if there is an IMU.
-    const Status init = mapper_.Initialize(now, !imu_used || motion_evidence_.Moving());
-    if (!init.ok() && init.code() != StatusCode::kFailedPrecondition) return init;
-    if (!init.ok()) tick.bootstrap_failure = init.message();
-    if (init.ok()) {
-      tick.mapped = tick.bootstrap = true;
-      tick.map = mapper_.local_map();
-      tick.map_observation = obs;
-      PublishToTracking(tick.map);
-      MeasureEdgeAge(tracked.T_world_cur, *obs);  // the first map's own edges, as they are now
-      lost_ticks_ = 0;
-    }
+Status Odometry::Map(TimeNs t_ns, bool cycle_due, const std::shared_ptr<events::Observation>& obs,
+                     const tracking::TrackingResult& tracked, OdometryTick* tick) {
+  const mapping::PosedObservation now{obs, tracked.T_world_cur};
+  if (!mapping_.initialized()) {
+    AAVIO_RETURN_IF_ERROR(Bootstrap(now, tick));
   } else if (tracked.status == tracking::TrackingStatus::kOk) {
     lost_ticks_ = 0;
     if (cycle_due) {
-      const mapping::Mapper::Partners partners = mapper_.TemporalPartnersFor(tracked.T_world_cur);
-      const bool on_thread = config_.pipeline.real_time || config_.pipeline.concurrent_mapping;
-      if (!on_thread) {
-        AAVIO_RETURN_IF_ERROR(mapper_.Update(now, partners.main ? &*partners.main : nullptr,
-                                             &tick.mapping,
-                                             partners.check ? &*partners.check : nullptr));
-        tick.mapped = true;
-        if (tick.mapping.published) {
-          tick.map = mapper_.local_map();
-          tick.map_observation = obs;
-          PublishToTracking(tick.map);
-        }
-      } else if (pending_cycle_.valid()) {
-        tick.mapping_skipped = true;  // the last cycle still runs: this one is dropped
-      } else {
-        pending_cycle_t_ns_ = t_ns;
-        // The partners are copies: the mapper may remember later observations meanwhile.
-        pending_cycle_ = std::async(std::launch::async, [this, now, partners] {
-          CycleResult r;
-          r.status = mapper_.Update(now, partners.main ? &*partners.main : nullptr, &r.report,
-                                    partners.check ? &*partners.check : nullptr);
-          if (r.report.published) {
-            r.map = mapper_.local_map();
-            r.observation = now.obs;
-          }
-          return r;
-        });
-      }
+      Expected<std::optional<MappingRunner::Cycle>> ran = mapping_.Start(
+          t_ns, now, history_.PartnersFor(tracked.T_world_cur), &tick->mapping_skipped);
+      if (!ran) return ran.status();
+      if (*ran) ApplyCycle(**ran, tick);
     }
   } else if (tracked.status == tracking::TrackingStatus::kImuOnly) {
     // Carried on the IMU through a stretch without events: the map is kept for when they return.
@@ -321,14 +301,30 @@ Status Odometry::Tick(TimeNs t_ns, int skipped_ticks) {
     // gyroscope alone does not say how far): forget the map; the next ticks bootstrap at the
     // held pose.
     Reinitialise(t_ns, tracked.T_world_cur, /*keep_velocity=*/true);
-    tick.reinitialised = true;
+    tick->reinitialised = true;
   }
-
   // This tick's AA map and tracked pose: a later cycle's temporal partner (partners are earlier
   // mapping ticks, as in the reference's queue of mapping frames).
-  if (!obs->aa_map.empty() && (tracked.status == tracking::TrackingStatus::kOk || tick.bootstrap))
-    mapper_.Remember(now);
-  if (on_tick) on_tick(tick);
+  if (!obs->aa_map.empty() && (tracked.status == tracking::TrackingStatus::kOk || tick->bootstrap))
+    history_.Remember(now);
+  return Status::Ok();
+}
+
+Status Odometry::Bootstrap(const mapping::PosedObservation& now, OdometryTick* tick) {
+  // SGM on this tick at the current pose; too few points: try the next tick. A small first map
+  // needs the IMU to show motion, if there is an IMU.
+  const Status init = mapping_.Initialize(now, !ImuUsed() || motion_evidence_.Moving());
+  if (init.code() == StatusCode::kFailedPrecondition) {
+    tick->bootstrap_failure = init.message();
+    return Status::Ok();
+  }
+  AAVIO_RETURN_IF_ERROR(init);
+  tick->mapped = tick->bootstrap = true;
+  tick->map = mapping_.local_map();
+  tick->map_observation = now.obs;
+  PublishToTracking(tick->map);
+  MeasureEdgeAge(now.T_world_obs, *now.obs);  // the first map's own edges, as they are now
+  lost_ticks_ = 0;
   return Status::Ok();
 }
 

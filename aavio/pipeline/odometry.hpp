@@ -1,5 +1,5 @@
 #pragma once
-/// The odometry front-end (docs/architecture.md, docs/architecture.md): events and IMU in; a pose
+/// The odometry front-end (docs/architecture.md): events and IMU in; a pose
 /// every tick, a local map every mapping cycle, and their timings out. Synchronous and driven by
 /// data time only — the same input and seed give the same output, bit for bit, whatever the machine
 /// load.
@@ -24,7 +24,6 @@
 
 #include <deque>
 #include <functional>
-#include <future>
 #include <optional>
 #include <span>
 #include <string>
@@ -34,7 +33,8 @@
 #include "aavio/geometry/rectification.hpp"
 #include "aavio/imu/inertial_check.hpp"
 #include "aavio/imu/motion_evidence.hpp"
-#include "aavio/mapping/mapper.hpp"
+#include "aavio/mapping/temporal_partners.hpp"
+#include "aavio/pipeline/mapping_runner.hpp"
 #include "aavio/pipeline/odometry_config.hpp"
 #include "aavio/tracking/edge_age.hpp"
 #include "aavio/tracking/tracker.hpp"
@@ -146,14 +146,27 @@ class Odometry {
   void Reinitialise(TimeNs t_ns, const geometry::RigidTransform& T_world_cam, bool keep_velocity);
   // The age of the events at the map's edges seen from T_world_cam, for the next ticks' decay.
   void MeasureEdgeAge(const geometry::RigidTransform& T_world_cam, const events::Observation& obs);
-  // Concurrent and real-time modes: a mapping cycle on its own thread, and its result.
-  struct CycleResult {
-    Status status = Status::Ok();
-    mapping::MappingCycleReport report;
-    mapping::LocalMapPtr map;
-    std::shared_ptr<const events::Observation> observation;
-  };
-  Status CollectCycle(OdometryTick* tick, bool wait);
+  // The steps of a tick.
+  // Whether a mapping cycle is due at t_ns (on a fixed grid of data time); moves the grid on.
+  bool CycleDue(TimeNs t_ns);
+  // The tick's observation: the right time surface, AA map and samples only where mapping may
+  // run (a bootstrap or a cycle's tick; or where a ground-truth map is built from the samples).
+  Status Observe(TimeNs t_ns, bool cycle_due, events::Observation* obs, OdometryTick* tick);
+  // A finished mapping cycle's map goes to tracking.
+  Status TakeFinishedCycle(TimeNs t_ns, OdometryTick* tick);
+  void ApplyCycle(const MappingRunner::Cycle& cycle, OdometryTick* tick);
+  // Prediction and registration against the newest map.
+  tracking::TrackingResult Track(TimeNs t_ns, const events::Observation& obs, OdometryTick* tick);
+  // A tracked pose the accelerometer contradicts is lost, and the map that misled it goes:
+  // returns true then (the tick says so).
+  bool ImuContradicts(TimeNs t_ns, const tracking::TrackingResult& tracked, OdometryTick* tick);
+  // Mapping on the tracked tick: the first map (bootstrap), a cycle when due, or, lost too long,
+  // a re-initialisation.
+  Status Map(TimeNs t_ns, bool cycle_due, const std::shared_ptr<events::Observation>& obs,
+             const tracking::TrackingResult& tracked, OdometryTick* tick);
+  Status Bootstrap(const mapping::PosedObservation& now, OdometryTick* tick);
+  // IMU samples are in the input and the configuration uses them.
+  bool ImuUsed() const { return config_.imu.mode != imu::ImuMode::kOff && imu_seen_; }
 
   OdometryConfig config_;
   geometry::StereoRectification rectification_;
@@ -162,7 +175,8 @@ class Odometry {
   tracking::Tracker tracker_;
   tracking::Camera camera_;
   tracking::AdaptiveDecay decay_;
-  mapping::Mapper mapper_;
+  MappingRunner mapping_;
+  mapping::TemporalHistory history_;     // the mapping ticks' AA maps and poses: temporal partners
   std::deque<imu::ImuSample> imu_;       // IMU clock
   TimeNs imu_offset_ns_;                 // t_imu − t_cam
   TimeNs last_t_end_ns_;                 // all data is in up to here
@@ -174,8 +188,6 @@ class Odometry {
   TimeNs cycle_ns_;       // mapping period: a whole number of ticks
   TimeNs next_cycle_ns_;  // the next mapping cycle is due at the first tick at or after it
   bool run_mapping_;
-  std::future<CycleResult> pending_cycle_;
-  TimeNs pending_cycle_t_ns_ = 0;  // the tick the pending cycle was started on
   std::int64_t ticks_ = 0;
   int lost_ticks_ = 0;
   TimeNs last_event_ns_;                   // the newest event of either camera (the start before)
