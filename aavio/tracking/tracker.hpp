@@ -14,10 +14,9 @@
 
 #include "aavio/events/observation.hpp"
 #include "aavio/geometry/rigid_transform.hpp"
-#include "aavio/imu/gyro_bias_estimator.hpp"
-#include "aavio/imu/imu_back_end.hpp"
 #include "aavio/imu/imu_config.hpp"
 #include "aavio/imu/imu_sample.hpp"
+#include "aavio/tracking/imu_prior.hpp"
 #include "aavio/tracking/registration.hpp"
 
 namespace aavio::tracking {
@@ -83,22 +82,35 @@ class Tracker {
   const TrackingMap* map() const { return map_.get(); }
   /// The gyroscope bias in use (configured, static-init, online or the back-end's estimate);
   /// valid after Reset.
-  Eigen::Vector3d gyro_bias() const;
+  Eigen::Vector3d gyro_bias() const { return imu_.gyro_bias(); }
   /// The back-end's estimate (imu.mode full, once it has one).
-  std::optional<imu::ImuState> imu_state() const;
+  std::optional<imu::ImuState> imu_state() const { return imu_.state(); }
 
   /// One tick: `imu` must cover [previous tick, this tick] when the gyroscope prior is on.
+  /// Predict, register the map (if it has enough points and there are events), classify the
+  /// result, update the motion model.
   TrackingResult Track(const events::Observation& obs, const cv::Mat& valid_mask,
                        std::span<const imu::ImuSample> imu);
 
  private:
+  // The pose at t_ns before registration: the IMU's prior and the motion model.
+  geometry::RigidTransform Predict(TimeNs t_ns, const TickPrior& prior);
+  // Registration of the map from the prediction (`gyro_prior`: its rotation is the
+  // gyroscope's); fills result->registration and returns the estimate.
+  geometry::RigidTransform Register(const events::Observation& obs, const cv::Mat& valid_mask,
+                                    const geometry::RigidTransform& T_world_predicted,
+                                    bool gyro_prior, TrackingResult* result) const;
+  // Tracked, carried on the IMU (the events do not register) or lost (the first test failed).
+  void Classify(const geometry::RigidTransform& T_world_estimate, const TickPrior& prior,
+                TrackingResult* result) const;
+  // The IMU prior, the velocity and the previous poses learn the tick's outcome.
+  void UpdateMotion(const events::Observation& obs, std::span<const imu::ImuSample> imu,
+                    const TickPrior& prior, TrackingResult* result);
+
   Camera camera_;
   TrackingConfig config_;
-  imu::ImuConfig imu_config_;
-  Eigen::Matrix3d R_imu_cam_;
-  std::optional<imu::GyroBiasEstimator> bias_;
-  std::optional<imu::ImuBackEnd> back_end_;  ///< imu.mode full
-  TimeNs last_tracked_ns_ = 0;               ///< the last registered (or standing) tick: bridging
+  ImuPrior imu_;
+  TimeNs last_tracked_ns_ = 0;  ///< the last registered (or standing) tick: bridging
   std::uint64_t seed_;
   std::optional<TimeNs> seed_origin_ns_;  // the first Reset's time: seeds mix in time since it
   std::shared_ptr<const TrackingMap> map_;
