@@ -275,6 +275,7 @@ bool Odometry::ImuContradicts(TimeNs t_ns, const tracking::TrackingResult& track
     inertial_check_.Restart();
   }
   tick->registration_iterations = tracked.registration.iterations;
+  if (tracked.registered) tick->registration_stop = tracked.registration.stop;
   tick->tracking_ms = tracked.prediction_ms + tracked.registration_ms;
   tick->prediction_ms = tracked.prediction_ms;
   tick->imu_state = tracker_.imu_state();

@@ -56,6 +56,8 @@ struct OdometryTick {
   tracking::TrackingStatus status = tracking::TrackingStatus::kNoMap;
   tracking::LostReason lost_reason = tracking::LostReason::kNone;
   int registration_iterations = 0;
+  /// Why the registration's LM stopped, where it ran.
+  std::optional<tracking::RegistrationStop> registration_stop;
   double tracking_ms = 0.0;  ///< prediction + registration
   double prediction_ms = 0.0;
   events::RepresentationTimings representation;

@@ -204,6 +204,8 @@ Status RunRecorder::AddTick(const pipeline::OdometryTick& t) {
   status_counts_[tracking::TrackingStatusName(t.status)]++;
   if (t.status == tracking::TrackingStatus::kLost)
     lost_reasons_[tracking::LostReasonName(t.lost_reason)]++;
+  if (t.registration_stop)
+    registration_stops_[tracking::RegistrationStopName(*t.registration_stop)]++;
   if (t.status == tracking::TrackingStatus::kImuOnly) {
     // Stretches carried on the IMU alone, [first tick, last tick] in data seconds.
     const double at = NsToSeconds(t.t_ns - options_.begin_ns);
@@ -441,6 +443,7 @@ Expected<RunRecord> RunRecorder::Finish(bool interrupted, TimeNs end_ns,
   s["poses"] = trajectory_.size();
   s["status"] = status_counts_;
   s["lost_reasons"] = lost_reasons_;
+  s["registration_stops"] = registration_stops_;
   event_gaps_.Finish(std::max(end_ns, options_.begin_ns));
   s["event_gaps"] = event_gaps_.Json();
   s["imu_only"] = nlohmann::json::array();

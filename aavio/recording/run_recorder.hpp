@@ -182,7 +182,7 @@ class RunRecorder {
   EventGaps event_gaps_;
   std::vector<std::array<double, 2>> imu_only_;  ///< stretches carried on the IMU alone [s]
   bool previous_imu_only_ = false;
-  std::map<std::string, int> status_counts_, lost_reasons_;
+  std::map<std::string, int> status_counts_, lost_reasons_, registration_stops_;
   std::int64_t dropped_events_ = 0;  // by pipeline.max_buffered_events
   std::int64_t events_ = 0, ticks_ = 0;
   std::int64_t events_since_tick_ = 0;  ///< timings.csv's `events`

@@ -11,10 +11,9 @@
 namespace aavio::tracking {
 namespace {
 
-constexpr double kMaxCayleyStep = 0.02;       // ≈ 2.3° per LM step
-constexpr double kMaxTranslationStep = 0.05;  // m per LM step
 // LM stops on a relative cost reduction or a relative step below these ([ESVO]).
 constexpr double kFunctionTolerance = 1e-3, kStepTolerance = 1e-3;
+constexpr double kDegPerRad = 180.0 / M_PI;
 
 // Bilinear interpolation weights at (u, v), shared by the images sampled there; the caller
 // checks the bounds.
@@ -37,13 +36,86 @@ double Bilinear(const cv::Mat& image, const BilinearWeights& w) {
          w.w01 * static_cast<double>(b[0]) + w.w11 * static_cast<double>(b[1]);
 }
 
+// The soft priors of the cost: the gyroscope's rotation, w‖K δ‖² with δ = log(R R_priorᵀ) and
+// K = 180/π (deg²), and the predicted translation, kt‖t − t_prior‖² (kt per m²).
+struct Priors {
+  std::optional<Eigen::Matrix3d> R_prior;  // only when weighted
+  double rotation_weight = 0.0;
+  Eigen::Vector3d t_prior = Eigen::Vector3d::Zero();
+  double kt = 0.0;
+
+  Eigen::Vector3d Deviation(const Eigen::Matrix3d& R) const {
+    return geometry::LogSO3(R * R_prior->transpose());
+  }
+  double Cost(const geometry::RigidTransform& T) const {
+    return (R_prior ? rotation_weight * kDegPerRad * kDegPerRad * Deviation(T.R).squaredNorm()
+                    : 0.0) +
+           kt * (T.t - t_prior).squaredNorm();
+  }
+};
+
+// The registration's cost on a set of map points (a mini-batch, or all): the mean robust
+// squared residual, plus the priors.
+class PointsCost final : public PoseCost {
+ public:
+  PointsCost(const Registration& registration, const RegistrationImages& images,
+             const Priors& priors)
+      : registration_(registration), images_(images), priors_(priors) {}
+  void SetPoints(std::span<const int> indices) { indices_ = indices; }
+
+  Linearization Linearize(const geometry::RigidTransform& T) const override {
+    const double count = static_cast<double>(indices_.size());
+    int valid = 0;
+    registration_.Linearize(images_, T, indices_, &r_, &J_, &valid);
+    Linearization at;
+    at.cost = r_.squaredNorm() / count + priors_.Cost(T);
+    at.H = J_.transpose() * J_;
+    at.g = J_.transpose() * r_;
+    // The rotation prior's rows: the increment R ← R(c) R moves δ by ≈ 2c, so with the
+    // unnormalised JᵀJ (data cost × count) they are √(w·count)·K·2I with residual
+    // √(w·count)·K·δ.
+    if (priors_.R_prior) {
+      const double k = priors_.rotation_weight * count * kDegPerRad * kDegPerRad;
+      at.H.topLeftCorner<3, 3>() += 4.0 * k * Eigen::Matrix3d::Identity();
+      at.g.head<3>() += 2.0 * k * priors_.Deviation(T.R);
+    }
+    if (priors_.kt > 0.0) {
+      at.H.bottomRightCorner<3, 3>() += priors_.kt * count * Eigen::Matrix3d::Identity();
+      at.g.tail<3>() += priors_.kt * count * (T.t - priors_.t_prior);
+    }
+    return at;
+  }
+  double Cost(const geometry::RigidTransform& T) const override {
+    int valid = 0;
+    registration_.Linearize(images_, T, indices_, &r_trial_, nullptr, &valid);
+    return r_trial_.squaredNorm() / static_cast<double>(indices_.size()) + priors_.Cost(T);
+  }
+
+ private:
+  const Registration& registration_;
+  const RegistrationImages& images_;
+  const Priors& priors_;
+  std::span<const int> indices_;
+  mutable Eigen::VectorXd r_, r_trial_;
+  mutable Eigen::Matrix<double, Eigen::Dynamic, 6> J_;
+};
+
 }  // namespace
 
-geometry::RigidTransform ApplyIncrement(const geometry::RigidTransform& T_ref_cur,
-                                        const Eigen::Matrix<double, 6, 1>& theta) {
-  const Eigen::Matrix3d Rc = geometry::CayleyToRotation(theta.head<3>());
-  return {geometry::Orthonormalize(Rc * T_ref_cur.R),
-          Eigen::Vector3d(theta.tail<3>() + Rc * T_ref_cur.t)};
+const char* RegistrationStopName(RegistrationStop stop) {
+  switch (stop) {
+    case RegistrationStop::kMaxIterations:
+      return "max_iterations";
+    case RegistrationStop::kConverged:
+      return "converged";
+    case RegistrationStop::kSmallStep:
+      return "small_step";
+    case RegistrationStop::kNoDescent:
+      return "no_descent";
+    case RegistrationStop::kNoPoints:
+      return "no_points";
+  }
+  return "?";
 }
 
 Registration::Registration(std::span<const Eigen::Vector3d> points_ref, const Camera& camera,
@@ -148,106 +220,66 @@ RegistrationResult Registration::Solve(
   result.T_ref_cur = T_ref_cur_init;
   const int n = static_cast<int>(points_.size());
   const int batch = std::min(config_.batch_size, n);
-  if (batch <= 0) return result;
+  if (batch <= 0) return result;  // RegistrationStop::kNoPoints
   const int batches = std::max(1, n / batch);
-  std::vector<int> indices(static_cast<std::size_t>(batch));
-  Eigen::VectorXd r, r_trial;
-  Eigen::Matrix<double, Eigen::Dynamic, 6> J;
-  int valid = 0;
   // Divergence tests compare costs on the same points: all of them, before and after.
   std::vector<int> all(static_cast<std::size_t>(n));
   std::iota(all.begin(), all.end(), 0);
-  auto mean_cost = [&](const geometry::RigidTransform& T, double* valid_fraction) {
-    int all_valid = 0;
-    Linearize(images, T, all, &r_trial, nullptr, &all_valid);
-    if (valid_fraction) *valid_fraction = static_cast<double>(all_valid) / n;
-    return r_trial.squaredNorm() / n;
-  };
-  result.initial_cost = mean_cost(result.T_ref_cur, &result.valid_fraction);
-  // The gyroscope prior as a cost term: w‖K δ‖², δ = log(R R_priorᵀ), K = 180/π. The increment
-  // R ← R(c) R moves δ by ≈ 2c, so with the unnormalised JᵀJ (data cost × count) its rows are
-  // √(w·count)·K·2I with residual √(w·count)·K·δ.
-  const bool use_prior = R_ref_cur_prior.has_value() && config_.gyro_rotation_weight > 0.0;
-  constexpr double kDegPerRad = 180.0 / M_PI;
-  auto deviation = [&](const Eigen::Matrix3d& R) {
-    return geometry::LogSO3(R * R_ref_cur_prior->transpose());
-  };
-  const double kt = config_.translation_prior_weight * 1e4;  // per cm² → per m²
-  const Eigen::Vector3d t_prior = T_ref_cur_init.t;
-  auto prior_cost = [&](const geometry::RigidTransform& T) {
-    return (use_prior ? config_.gyro_rotation_weight * kDegPerRad * kDegPerRad *
-                            deviation(T.R).squaredNorm()
-                      : 0.0) +
-           kt * (T.t - t_prior).squaredNorm();
-  };
-  double lambda = 1e-4;
-  // One LM step on the points `idx` (damping adapted across steps, as the reference): true if a
-  // step was accepted; `small` when its cost reduction was below the tolerance.
-  auto lm_step = [&](const std::vector<int>& idx, bool* small, Eigen::Matrix<double, 6, 1>* step) {
-    const double count = static_cast<double>(idx.size());
-    Linearize(images, result.T_ref_cur, idx, &r, &J, &valid);
-    const double cost = r.squaredNorm() / count + prior_cost(result.T_ref_cur);
-    Eigen::Matrix<double, 6, 6> H = J.transpose() * J;
-    Eigen::Matrix<double, 6, 1> g = J.transpose() * r;
-    if (use_prior) {
-      const double k = config_.gyro_rotation_weight * count * kDegPerRad * kDegPerRad;
-      H.topLeftCorner<3, 3>() += 4.0 * k * Eigen::Matrix3d::Identity();
-      g.head<3>() += 2.0 * k * deviation(result.T_ref_cur.R);
-    }
-    if (kt > 0.0) {
-      H.bottomRightCorner<3, 3>() += kt * count * Eigen::Matrix3d::Identity();
-      g.tail<3>() += kt * count * (result.T_ref_cur.t - t_prior);
-    }
-    for (int attempt = 0; attempt < 6; ++attempt) {
-      Eigen::Matrix<double, 6, 6> A = H;
-      A.diagonal() += lambda * H.diagonal() + Eigen::Matrix<double, 6, 1>::Constant(1e-9);
-      Eigen::Matrix<double, 6, 1> theta = A.ldlt().solve(-g);
-      // A step larger than a tick's plausible motion comes from a degenerate batch (few edges,
-      // flat surface): shorten it rather than jump (Cayley c ≈ θ/2).
-      const double scale = std::max({1.0, theta.head<3>().norm() / kMaxCayleyStep,
-                                     theta.tail<3>().norm() / kMaxTranslationStep});
-      theta /= scale;
-      const geometry::RigidTransform trial = ApplyIncrement(result.T_ref_cur, theta);
-      int trial_valid = 0;
-      Linearize(images, trial, idx, &r_trial, nullptr, &trial_valid);
-      const double trial_cost = r_trial.squaredNorm() / count + prior_cost(trial);
-      if (trial_cost < cost) {
-        result.T_ref_cur = trial;
-        lambda = std::max(1e-7, lambda * 0.1);
-        *small = (cost - trial_cost) / cost < kFunctionTolerance;
-        *step = theta;
-        return true;
-      }
-      lambda *= 10.0;
-    }
-    return false;
-  };
+  result.initial_cost = MeanCost(images, result.T_ref_cur, all, &result.valid_fraction);
+  Priors priors;
+  if (R_ref_cur_prior && config_.gyro_rotation_weight > 0.0) {
+    priors.R_prior = R_ref_cur_prior;
+    priors.rotation_weight = config_.gyro_rotation_weight;
+  }
+  priors.t_prior = T_ref_cur_init.t;
+  priors.kt = config_.translation_prior_weight * 1e4;  // per cm² → per m²
+  PointsCost cost(*this, images, priors);
+  PoseLevenbergMarquardt lm({.function_tolerance = kFunctionTolerance});
   // Mini-batches (the reference): consecutive batches of the shuffled points.
-  bool small_reduction = false;
-  Eigen::Matrix<double, 6, 1> theta = Eigen::Matrix<double, 6, 1>::Zero();
-  for (int iteration = 0; iteration < config_.max_iterations && !small_reduction; ++iteration) {
-    const int b = iteration % batches;
-    std::iota(indices.begin(), indices.end(), b * batch);
-    const bool accepted = lm_step(indices, &small_reduction, &theta);
+  std::vector<int> indices(static_cast<std::size_t>(batch));
+  result.stop = RegistrationStop::kMaxIterations;
+  for (int iteration = 0; iteration < config_.max_iterations; ++iteration) {
+    std::iota(indices.begin(), indices.end(), (iteration % batches) * batch);
+    cost.SetPoints(indices);
+    const LmStep step = lm.Step(cost, &result.T_ref_cur);
     result.iterations = iteration + 1;
-    if (!accepted) {
-      if (batches == 1) break;  // no progress possible on the only batch
-    } else if (theta.norm() < kStepTolerance * 1e-2) {
+    if (step.accepted && step.small_reduction) {
+      result.stop = RegistrationStop::kConverged;
+      break;
+    }
+    if (!step.accepted && batches == 1) {
+      result.stop = RegistrationStop::kNoDescent;  // no progress possible on the only batch
+      break;
+    }
+    if (step.accepted && step.theta.norm() < kStepTolerance * 1e-2) {
+      result.stop = RegistrationStop::kSmallStep;
       break;
     }
   }
   // Polish (aavio): a few steps on all points, so that the last batch's sampling noise does not
   // stay in the pose.
   if (batches > 1) {
-    bool small = false;
-    for (int k = 0; k < config_.polish_iterations && !small; ++k) {
+    cost.SetPoints(all);
+    for (int k = 0; k < config_.polish_iterations; ++k) {
       ++result.iterations;
-      if (!lm_step(all, &small, &theta)) break;
+      const LmStep step = lm.Step(cost, &result.T_ref_cur);
+      if (!step.accepted || step.small_reduction) break;
     }
   }
-  result.final_cost = mean_cost(result.T_ref_cur, nullptr);
+  result.final_cost = MeanCost(images, result.T_ref_cur, all, nullptr);
   result.alignment = Alignment(images, result.T_ref_cur);
   return result;
+}
+
+double Registration::MeanCost(const RegistrationImages& images,
+                              const geometry::RigidTransform& T_ref_cur,
+                              std::span<const int> indices, double* valid_fraction) const {
+  Eigen::VectorXd r;
+  int valid = 0;
+  Linearize(images, T_ref_cur, indices, &r, nullptr, &valid);
+  const double n = static_cast<double>(indices.size());
+  if (valid_fraction) *valid_fraction = valid / n;
+  return r.squaredNorm() / n;
 }
 
 }  // namespace aavio::tracking

@@ -4,8 +4,9 @@
 /// time surface,
 ///   min_θ Σ_i Huber( N(π(T_cur,ref(θ) p_i)) ),  N = negative TS (bilinear),
 /// parametrised by a Cayley + translation increment on T_ref,cur (left composition in the
-/// reference frame), solved by Levenberg–Marquardt over mini-batches of a random subset of the
-/// map, one LM step per batch, with the analytic Jacobian ∇N · ∂π/∂q · ∂q/∂θ,
+/// reference frame), solved by Levenberg–Marquardt (pose_lm.hpp) over mini-batches of a random
+/// subset of the map, one LM step per batch, then a few on all points, with the analytic
+/// Jacobian ∇N · ∂π/∂q · ∂q/∂θ,
 ///   ∂q/∂δ = −Rᵀ, ∂q/∂c = 2 Rᵀ [p]×  (at θ = 0, (R, t) = T_ref,cur, p in the reference frame).
 
 #include <Eigen/Core>
@@ -16,6 +17,7 @@
 #include <vector>
 
 #include "aavio/geometry/rigid_transform.hpp"
+#include "aavio/tracking/pose_lm.hpp"
 #include "aavio/tracking/tracking_config.hpp"
 
 namespace aavio::tracking {
@@ -33,9 +35,21 @@ struct RegistrationImages {
   const cv::Mat& valid_mask;  ///< CV_8UC1, > 125 = usable
 };
 
+/// Why the LM stopped stepping through the mini-batches (before its polish on all points).
+enum class RegistrationStop {
+  kMaxIterations,  ///< tracking.max_iterations steps ran
+  kConverged,      ///< a step lowered the cost by less than 0.1 % of it
+  kSmallStep,      ///< a step moved the pose by less than 1e-5 (Cayley + metres)
+  kNoDescent,      ///< no damping lowered the cost, and there is only one batch
+  kNoPoints,       ///< no map point to register
+};
+/// "max_iterations", "converged", "small_step", "no_descent" or "no_points" (summary.json).
+const char* RegistrationStopName(RegistrationStop stop);
+
 struct RegistrationResult {
   geometry::RigidTransform T_ref_cur;
   int iterations = 0;
+  RegistrationStop stop = RegistrationStop::kNoPoints;
   double initial_cost = 0.0, final_cost = 0.0;  ///< mean robust cost per point
   double valid_fraction = 0.0;  ///< share of points landing inside the image and mask
   /// At the final pose: the mean cost of the points that land inside, over the mean cost of the
@@ -69,13 +83,13 @@ class Registration {
  private:
   double Alignment(const RegistrationImages& images,
                    const geometry::RigidTransform& T_ref_cur) const;
+  // The mean robust squared residual of the points `indices` at T_ref_cur, and the share of
+  // them inside the image and mask.
+  double MeanCost(const RegistrationImages& images, const geometry::RigidTransform& T_ref_cur,
+                  std::span<const int> indices, double* valid_fraction) const;
   std::vector<Eigen::Vector3d> points_;  // the chosen subset, reference frame
   Camera camera_;
   TrackingConfig config_;
 };
-
-/// Applies an increment θ = (c, δ) to T_ref_cur: R ← R(c) R, t ← δ + R(c) t, R re-orthonormalised.
-geometry::RigidTransform ApplyIncrement(const geometry::RigidTransform& T_ref_cur,
-                                        const Eigen::Matrix<double, 6, 1>& theta);
 
 }  // namespace aavio::tracking

@@ -127,6 +127,34 @@ TEST(Registration, ConvergesFromTwoDegreesAndFiveCentimetres) {
   }
 }
 
+// Why the LM stopped: the steps ran out; the cost stopped falling near the optimum; no map.
+TEST(Registration, SaysWhyItStopped) {
+  const PosedEdgeScene scene;
+  const RegistrationImages input = scene.Input();
+  geometry::RigidTransform far = scene.truth;
+  far.R = geometry::ExpSO3(Eigen::Vector3d(0.0, 2.0 * M_PI / 180.0, 0.0)) * far.R;
+  far.t += Eigen::Vector3d(0.05, 0.0, 0.0);
+  TrackingConfig config;
+  config.max_iterations = 2;
+  config.polish_iterations = 3;
+  const RegistrationResult cut = Registration(scene.map, kCamera, config, 1).Solve(input, far);
+  EXPECT_EQ(cut.stop, RegistrationStop::kMaxIterations);
+  EXPECT_GE(cut.iterations, 3);  // 2 on batches and at least one polishing step
+  EXPECT_LE(cut.iterations, 5);
+  config.max_iterations = 20;
+  geometry::RigidTransform near = scene.truth;
+  near.t += Eigen::Vector3d(0.002, 0.0, 0.0);
+  const RegistrationResult done = Registration(scene.map, kCamera, config, 1).Solve(input, near);
+  EXPECT_TRUE(done.stop == RegistrationStop::kConverged ||
+              done.stop == RegistrationStop::kSmallStep)
+      << RegistrationStopName(done.stop);
+  EXPECT_LT(done.iterations, 20);
+  const RegistrationResult none = Registration({}, kCamera, config, 1).Solve(input, near);
+  EXPECT_EQ(none.stop, RegistrationStop::kNoPoints);
+  EXPECT_EQ(none.iterations, 0);
+  EXPECT_STREQ(RegistrationStopName(RegistrationStop::kNoDescent), "no_descent");
+}
+
 // Alignment: at the true pose the map sits on the dark edges, far below the image's mean cost;
 // on a time surface of the same darkness at random places (noise), no better than anywhere.
 TEST(Registration, AlignmentSaysWhetherTheMapFitsBetterThanAnywhere) {

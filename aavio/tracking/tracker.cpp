@@ -179,6 +179,7 @@ geometry::RigidTransform Tracker::Register(const events::Observation& obs,
   std::optional<Eigen::Matrix3d> R_prior;
   if (gyro_prior) R_prior = T_ref_predicted.R;  // the gyroscope's rotation
   result->registration = registration.Solve(images, T_ref_predicted, R_prior);
+  result->registered = true;
   result->registration_ms = MsSince(start);
   return map_->T_world_ref * result->registration.T_ref_cur;
 }

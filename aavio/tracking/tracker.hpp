@@ -57,6 +57,7 @@ struct TrackingResult {
   geometry::RigidTransform T_world_predicted;  ///< the registration's starting point
   TrackingStatus status = TrackingStatus::kNoMap;
   LostReason lost_reason = LostReason::kNone;
+  bool registered = false;  ///< the registration ran (a map, and events to register on)
   RegistrationResult registration;
   double prediction_ms = 0.0, registration_ms = 0.0;
 };
