@@ -30,12 +30,11 @@
 #include "config_options.hpp"
 #include "ground_truth_maps.hpp"
 #include "option_checks.hpp"
+#include "run_printing.hpp"
 #include "sequence_opening.hpp"
 
 namespace aavio::cli {
 namespace {
-
-using Clock = std::chrono::steady_clock;
 
 // How far before its first pose the ground truth still gives the start pose (extrapolated): a
 // recorded path's stamps have sub-microsecond digits where events are stamped in microseconds, so
@@ -110,126 +109,6 @@ Status LoadGroundTruth(const OpenedSequence& s, bool required,
   return Status::Ok();
 }
 
-void PrintOdometryRun(const recording::RunRecord& r, Context& ctx) {
-  const nlohmann::json& s = r.summary;
-  auto count = [&](const char* status) { return s["status"].value(status, 0); };
-  ctx.out << StrFormat("%s%.2f s of data (%lld events) in %.1f s: real-time factor %.2f\n",
-                       s["interrupted"].get<bool>() ? "interrupted: " : "", r.data_s,
-                       s["events"].get<long long>(), r.wall_s, s["real_time_factor"].get<double>());
-  const std::string imu = count("imu") > 0 ? StrFormat(", IMU alone %d", count("imu")) : "";
-  ctx.out << StrFormat(
-      "poses %zu: tracking ok %d, lost %d, no map %d%s; %d bootstrap(s), %d "
-      "re-initialisation(s)\n",
-      s["poses"].get<std::size_t>(), count("ok"), count("lost"), count("no_map"), imu.c_str(),
-      s["bootstraps"].get<int>(), s["reinitialisations"].get<int>());
-  if (s.contains("motion") && s["motion"].contains("poses_at")) {
-    const nlohmann::json& p = s["motion"]["poses_at"];
-    ctx.out << StrFormat("%s: %zu of the %zu stamps asked for",
-                         p["file"].get<std::string>().c_str(), p["written"].get<std::size_t>(),
-                         p["requested"].get<std::size_t>());
-    if (p["missing"].get<std::size_t>() > 0) {
-      ctx.out << StrFormat(
-          "; %zu have no pose (%.3f-%.3f s: before or after the trajectory, or in a gap)",
-          p["missing"].get<std::size_t>(), p["first_missing_s"].get<double>(),
-          p["last_missing_s"].get<double>());
-    }
-    ctx.out << "\n";
-  }
-  for (const char* camera : {"left", "right"}) {
-    if (s["event_gaps"][camera].empty()) continue;
-    std::string line = StrFormat("no events from the %s camera:", camera);
-    for (const nlohmann::json& gap : s["event_gaps"][camera])
-      line += StrFormat(" %.2f-%.2f s", gap[0].get<double>(), gap[1].get<double>());
-    ctx.out << line << "\n";
-  }
-  if (const auto dropped = s["dropped_events"].get<long long>(); dropped > 0) {
-    ctx.out << StrFormat(
-        "dropped %lld events: more than pipeline.max_buffered_events per camera waited for one "
-        "tick (a burst)\n",
-        dropped);
-  }
-  if (!s["event_gaps"]["skipped"].empty()) {
-    std::string line =
-        "no events from either camera (not ticked through; mapping restarted after):";
-    for (const nlohmann::json& gap : s["event_gaps"]["skipped"])
-      line += StrFormat(" %.2f-%.2f s", gap[0].get<double>(), gap[1].get<double>());
-    ctx.out << line << "\n";
-  }
-  if (!s["imu_only"].empty()) {
-    std::string line = "carried on the IMU alone (events missing or not registering):";
-    for (const nlohmann::json& stretch : s["imu_only"])
-      line += StrFormat(" %.2f-%.2f s", stretch[0].get<double>(), stretch[1].get<double>());
-    ctx.out << line << "\n";
-  }
-  if (const int failed = s["bootstrap_failures"]["ticks"].get<int>(); failed > 0) {
-    ctx.out << StrFormat(
-        "bootstrap: %d tick(s) found too few points and tried again on the next "
-        "(last: %s)\n",
-        failed, s["bootstrap_failures"]["last_reason"].get<std::string>().c_str());
-  }
-  std::string stages = "median per stage [ms]:";
-  for (const char* stage : {"time_surface", "ts_derived", "aa_map", "sampling", "tracking",
-                            "matching", "depth_refinement", "fusion", "mapping_total"}) {
-    if (s["stages"].contains(stage))
-      stages += StrFormat(" %s %.2f", stage, s["stages"][stage]["median_ms"].get<double>());
-  }
-  ctx.out << stages << "\n";
-  if (r.accuracy) {
-    const eval::TrajectoryError& e = r.accuracy->absolute;
-    ctx.out << StrFormat(
-        "accuracy vs ground truth (%zu poses, se3-aligned, path %.2f m): ATE RMSE %.4f m "
-        "(%.2f %% of the path); RPE %.2f %%, %.3f deg/m; over %.1f s: %.4f m, %.3f deg\n",
-        e.pairs, e.path_length_m, e.ate_rmse_m,
-        e.path_length_m > 0 ? 100.0 * e.ate_rmse_m / e.path_length_m : 0.0,
-        r.accuracy->relative.trans_pct_rmse, r.accuracy->relative.rot_deg_per_m_rmse, e.rpe_step_s,
-        e.rpe_translation_rmse_m, e.rpe_rotation_rmse_deg);
-  }
-}
-
-// The end-of-run lines: what ran, how fast, how accurate, where the outputs are.
-void PrintRun(const recording::RunRecord& record, const RunOptions& options,
-              const std::optional<RelativeError100Ms>& tracking_error, const std::string& imu_mode,
-              Context& ctx) {
-  const nlohmann::json& s = record.summary;
-  if (options.gt_poses) {
-    ctx.out << StrFormat(
-        "%smapped %.2f s of data in %.1f s (real-time factor %.2f): %d cycles, %.0f map points "
-        "per depth map\n",
-        s["interrupted"].get<bool>() ? "interrupted: " : "", record.data_s, record.wall_s,
-        s["real_time_factor"].get<double>(), s["mapping_cycles"].get<int>(),
-        s["mean_map_points"].get<double>());
-  } else {
-    PrintOdometryRun(record, ctx);
-  }
-  if (tracking_error) {
-    ctx.out << StrFormat(
-        "tracked against ground-truth maps (imu.mode %s): RPE over 100 ms: rotation "
-        "%.4f deg, translation %.4f m (RMSE)\n",
-        imu_mode.c_str(), tracking_error->rotation_deg_rmse, tracking_error->translation_m_rmse);
-  }
-  if (record.depth) ctx.out << recording::DepthTable(*record.depth);
-  if (record.sample_ceiling) ctx.out << recording::SampleCeilingLine(*record.sample_ceiling);
-  std::string trajectories;
-  if (s["poses"].get<std::size_t>() > 0) {
-    trajectories = "stamped_traj_estimate.txt,stamped_velocity_estimate.txt,timings.csv,";
-    if (s.contains("motion") && s["motion"].contains("poses_at"))
-      trajectories += s["motion"]["poses_at"]["file"].get<std::string>() + ",";
-    else if (options.format != "tum")
-      trajectories += io::TrajectoryFileName(*io::WritableTrajectoryFormat(options.format)) + ",";
-  }
-  const auto world = s.find("world");
-  if (world != s.end() && world->contains("gravity_unavailable")) {
-    ctx.err << "warning: --world gravity: the trajectory and map.ply stay in the first camera's "
-               "frame: "
-            << (*world)["gravity_unavailable"].get<std::string>() << "\n";
-  } else if (world != s.end() && (*world)["frame"] == "gravity") {
-    ctx.out << "world: z up along the measured gravity (summary.json world)\n";
-  }
-  ctx.out << "wrote " << options.out_dir << "/{" << trajectories
-          << "summary.json,config.yaml,map.ply"
-          << (s["depth_maps_written"].get<int>() > 0 ? ",depth/" : "") << "}\n";
-}
-
 // What `aavio run` adds around the library's loop: Ctrl-C stops it, each packet is counted in the
 // recorder, and on a terminal the progress is shown.
 pipeline::SequenceRunHooks RunHooks(recording::RunRecorder* recorder, bool progress, Context& ctx) {
@@ -273,104 +152,112 @@ class InterruptHandlers {
   Handler previous_int_, previous_term_;
 };
 
-// Returns whether the run was interrupted (its outputs hold what was done); on an error,
-// `exit_code` says whether it is a wrong argument.
-Expected<bool> Run(RunOptions options, Context& ctx, int* exit_code) {
-  if (options.repeat > 1 && (options.gt_poses || options.gt_map)) {
-    *exit_code = kExitUsage;
-    return InvalidArgument(
-        "--repeat is for the full odometry; --gt-poses and --gt-map follow "
-        "the ground truth, which a repeated sequence does not have");
-  }
-  Expected<OpenedSequence> opened =
-      OpenSequence(options.sequence, options.calibration, options.repeat);
-  if (!opened) return opened.status();
-  io::SequenceReader* reader = opened->reader.get();
-  const TimeNs begin = reader->start_ns() + SecondsToNs(options.start_s);
-  const TimeNs end =
-      options.duration_s > 0.0 ? begin + SecondsToNs(options.duration_s) : reader->end_ns();
-  Expected<io::TrajectoryFormat> format = io::WritableTrajectoryFormat(options.format);
+// What a run needs besides the sequence, prepared before the output folder is touched (so that
+// an error in the input leaves no half-written folder).
+struct RunSetup {
+  TimeNs begin = 0, end = 0;
+  io::TrajectoryFormat format = io::TrajectoryFormat::kTum;
+  std::vector<TimeNs> poses_at;
+  pipeline::OdometryConfig config;
+  std::optional<recording::RunGroundTruth> truth;
+  std::vector<geometry::StampedPose> gt_list;
+  geometry::PoseBuffer gt_poses{0};
+  std::optional<GroundTruthMaps> gt_maps;  // --gt-map
+  geometry::RigidTransform start_pose;     // --gt-map: the ground truth's at `begin`
+};
+
+// The span to run, the output formats and the configuration; `exit_code` says whether an error
+// is a wrong argument.
+Status PrepareRun(RunOptions* options, OpenedSequence& opened, RunSetup* setup, Context& ctx,
+                  int* exit_code) {
+  io::SequenceReader* reader = opened.reader.get();
+  setup->begin = reader->start_ns() + SecondsToNs(options->start_s);
+  setup->end = options->duration_s > 0.0 ? setup->begin + SecondsToNs(options->duration_s)
+                                         : reader->end_ns();
+  Expected<io::TrajectoryFormat> format = io::WritableTrajectoryFormat(options->format);
   if (!format) {
     *exit_code = kExitUsage;
     return format.status().WithContext("--format");
   }
-  std::vector<TimeNs> poses_at;
-  if (!options.poses_at.empty()) {
-    Expected<std::vector<TimeNs>> stamps = io::ReadStamps(options.poses_at);
+  setup->format = *format;
+  if (!options->poses_at.empty()) {
+    Expected<std::vector<TimeNs>> stamps = io::ReadStamps(options->poses_at);
     if (!stamps) return stamps.status().WithContext("--poses-at");
-    poses_at = std::move(*stamps);
+    setup->poses_at = std::move(*stamps);
   }
-  if (options.start_s > 0.0) AAVIO_RETURN_IF_ERROR(reader->Seek(begin));
-  AAVIO_RETURN_IF_ERROR(ConfigureForSequence(*opened, begin, end, &options, ctx));
+  if (options->start_s > 0.0) AAVIO_RETURN_IF_ERROR(reader->Seek(setup->begin));
+  AAVIO_RETURN_IF_ERROR(ConfigureForSequence(opened, setup->begin, setup->end, options, ctx));
   // The ESVO-like mode is the shipped overlay configs/overlays/esvo.yaml (the embedded one, even
   // if a file named "esvo" is here), after the user's files; --set still applies.
-  if (options.esvo) options.config.overlays.push_back("esvo");
-  if (options.real_time) options.config.overrides.push_back("pipeline.real_time=true");
-  Expected<pipeline::OdometryConfig> config = config::ResolveOdometryConfig(options.config);
+  if (options->esvo) options->config.overlays.push_back("esvo");
+  if (options->real_time) options->config.overrides.push_back("pipeline.real_time=true");
+  Expected<pipeline::OdometryConfig> config = config::ResolveOdometryConfig(options->config);
   if (!config) {
-    *exit_code = ConfigErrorExitCode(options.config);
+    *exit_code = ConfigErrorExitCode(options->config);
     return config.status();
   }
-  const geometry::StereoRig& rig = opened->calibration.rig;
-  // Worker threads of the parallel stages (TBB) and of OpenCV; 0 = all cores.
-  cv::setNumThreads(config->pipeline.num_threads);
-  std::optional<tbb::global_control> workers;
-  if (config->pipeline.num_threads > 0) {
-    workers.emplace(tbb::global_control::max_allowed_parallelism,
-                    static_cast<std::size_t>(config->pipeline.num_threads));
-  }
+  setup->config = std::move(*config);
+  return Status::Ok();
+}
 
-  // Everything that can fail on the input before the output folder is touched.
-  std::optional<recording::RunGroundTruth> truth;
-  std::vector<geometry::StampedPose> gt_list;
+// The ground truth the run is scored against, and what the modes on ground truth follow.
+Status PrepareGroundTruth(const RunOptions& options, const OpenedSequence& opened,
+                          RunSetup* setup) {
   // A repeated sequence jumps back at each seam: its ground truth no longer applies.
   if (options.repeat == 1) {
-    AAVIO_RETURN_IF_ERROR(
-        LoadGroundTruth(*opened, options.gt_poses || options.gt_map, &truth, &gt_list));
+    AAVIO_RETURN_IF_ERROR(LoadGroundTruth(opened, options.gt_poses || options.gt_map, &setup->truth,
+                                          &setup->gt_list));
   }
-  geometry::PoseBuffer gt_poses(0);
-  for (const geometry::StampedPose& p : gt_list)
-    AAVIO_RETURN_IF_ERROR(gt_poses.Insert(p.t_ns, p.T_world_body));
-  std::optional<GroundTruthMaps> gt_maps;
-  geometry::RigidTransform start_pose;
-  if (options.gt_map) {
-    Expected<GroundTruthMaps> maps = GroundTruthMaps::Create(*opened, gt_poses);
-    if (!maps) return maps.status();
-    gt_maps.emplace(std::move(*maps));
-    Expected<geometry::RigidTransform> at_start =
-        gt_poses.Query(begin, kGroundTruthStartToleranceNs);
-    if (!at_start) return at_start.status().WithContext("ground truth at the start");
-    start_pose = *at_start;
-  }
+  for (const geometry::StampedPose& p : setup->gt_list)
+    AAVIO_RETURN_IF_ERROR(setup->gt_poses.Insert(p.t_ns, p.T_world_body));
+  if (!options.gt_map) return Status::Ok();
+  Expected<GroundTruthMaps> maps = GroundTruthMaps::Create(opened, setup->gt_poses);
+  if (!maps) return maps.status();
+  setup->gt_maps.emplace(std::move(*maps));
+  Expected<geometry::RigidTransform> at_start =
+      setup->gt_poses.Query(setup->begin, kGroundTruthStartToleranceNs);
+  if (!at_start) return at_start.status().WithContext("ground truth at the start");
+  setup->start_pose = *at_start;
+  return Status::Ok();
+}
 
-  recording::RunRecorderOptions recorder_options;
-  recorder_options.out_dir = options.out_dir;
-  recorder_options.overwrite = options.overwrite;
-  recorder_options.mode = ModeName(options);
+Expected<std::unique_ptr<recording::RunRecorder>> OpenRecorder(const RunOptions& options,
+                                                               const OpenedSequence& opened,
+                                                               RunSetup* setup) {
+  recording::RunRecorderOptions recorder;
+  recorder.out_dir = options.out_dir;
+  recorder.overwrite = options.overwrite;
+  recorder.mode = ModeName(options);
   // Absolute, so that `aavio eval --run` and `aavio report` find it from any folder.
-  recorder_options.sequence =
-      std::filesystem::absolute(opened->description.origin).lexically_normal().string();
-  recorder_options.calibration =
-      std::filesystem::absolute(opened->description.calibration).lexically_normal().string();
-  recorder_options.version = VersionString();
-  recorder_options.begin_ns = begin;
-  recorder_options.format = *format;
-  recorder_options.poses_at = std::move(poses_at);
+  recorder.sequence =
+      std::filesystem::absolute(opened.description.origin).lexically_normal().string();
+  recorder.calibration =
+      std::filesystem::absolute(opened.description.calibration).lexically_normal().string();
+  recorder.version = VersionString();
+  recorder.begin_ns = setup->begin;
+  recorder.format = setup->format;
+  recorder.poses_at = std::move(setup->poses_at);
   using World = recording::RunRecorderOptions::World;
-  recorder_options.world = options.gt_poses || options.gt_map ? World::kGroundTruth
-                           : options.world == "gravity"       ? World::kGravity
-                                                              : World::kFirstCamera;
-  recorder_options.config_yaml = io::FormatConfigYaml(
-      FlattenConfig(*config), "aavio effective configuration (" + VersionString() +
-                                  ")\nfrom: " + config::DescribeSources(options.config) +
-                                  (options.esvo ? " (ESVO-like mode, --esvo)" : ""));
+  recorder.world = options.gt_poses || options.gt_map ? World::kGroundTruth
+                   : options.world == "gravity"       ? World::kGravity
+                                                      : World::kFirstCamera;
+  recorder.config_yaml = io::FormatConfigYaml(
+      FlattenConfig(setup->config), "aavio effective configuration (" + VersionString() +
+                                        ")\nfrom: " + config::DescribeSources(options.config) +
+                                        (options.esvo ? " (ESVO-like mode, --esvo)" : ""));
   Expected<std::unique_ptr<recording::RunRecorder>> opened_recorder =
-      recording::RunRecorder::Open(recorder_options, rig, *config);
+      recording::RunRecorder::Open(recorder, opened.calibration.rig, setup->config);
   if (!opened_recorder) return opened_recorder.status();
-  recording::RunRecorder& recorder = **opened_recorder;
-  if (truth) AAVIO_RETURN_IF_ERROR(recorder.SetGroundTruth(*truth, gt_list));
+  if (setup->truth)
+    AAVIO_RETURN_IF_ERROR((*opened_recorder)->SetGroundTruth(*setup->truth, setup->gt_list));
+  return opened_recorder;
+}
 
-  // The front end of the mode, fed packet by packet.
+// The mode's front end, fed the sequence by the library's loop, each tick or mapping cycle into
+// the recorder. An error of the recorder (a full disk) stops the run as an input error would.
+pipeline::SequenceRun Drive(const RunOptions& options, OpenedSequence& opened, RunSetup& setup,
+                            recording::RunRecorder& recorder, Context& ctx) {
+  const geometry::StereoRig& rig = opened.calibration.rig;
   Status callback_status = Status::Ok();
   auto keep = [&](const Status& s) {
     if (callback_status.ok()) callback_status = s;
@@ -378,41 +265,40 @@ Expected<bool> Run(RunOptions options, Context& ctx, int* exit_code) {
   std::optional<pipeline::Odometry> odometry;
   std::optional<pipeline::MappingFrontEnd> mapping;
   if (options.gt_poses) {
-    mapping.emplace(rig, *config, gt_poses, begin);
+    mapping.emplace(rig, setup.config, setup.gt_poses, setup.begin);
     mapping->on_tick = [&](TimeNs t_ns, const events::RepresentationTimings& t) {
       recorder.AddMappingTick(t_ns, t);
     };
     mapping->on_cycle = [&](const pipeline::MappingCycle& c) { keep(recorder.AddMappingCycle(c)); };
   } else {
-    odometry.emplace(rig, *config, begin, start_pose, /*run_mapping=*/!options.gt_map);
+    odometry.emplace(rig, setup.config, setup.begin, setup.start_pose,
+                     /*run_mapping=*/!options.gt_map);
     odometry->on_tick = [&](const pipeline::OdometryTick& t) { keep(recorder.AddTick(t)); };
-    if (gt_maps) {
+    if (setup.gt_maps) {
       odometry->before_tick = [&](const events::Observation& obs) {
-        Expected<std::shared_ptr<tracking::TrackingMap>> map = gt_maps->MapFor(obs);
+        Expected<std::shared_ptr<tracking::TrackingMap>> map = setup.gt_maps->MapFor(obs);
         if (!map) return keep(map.status());
         if (*map) odometry->SetTrackingMap(std::move(*map));
       };
     }
   }
-
   const bool progress = !options.quiet && isatty(STDERR_FILENO);
   pipeline::SequenceRunHooks hooks = RunHooks(&recorder, progress, ctx);
+  hooks.after_packet = [&](const io::SensorPacket& packet) {
+    if (odometry) {
+      recorder.AddStage("event_insertion", odometry->last_insertion_ms(),
+                        static_cast<double>(packet.left.size() + packet.right.size()));
+    }
+    return callback_status;
+  };
   pipeline::SequenceRun fed;
   {
     InterruptHandlers interrupts;
-    // What the recorder's callbacks met (a full disk) stops the run after that packet.
-    hooks.after_packet = [&](const io::SensorPacket& packet) {
-      if (odometry) {
-        recorder.AddStage("event_insertion", odometry->last_insertion_ms(),
-                          static_cast<double>(packet.left.size() + packet.right.size()));
-      }
-      return callback_status;
-    };
     if (odometry) {
-      fed = pipeline::RunOdometry(*reader, begin, end, &*odometry, hooks);
+      fed = pipeline::RunOdometry(*opened.reader, setup.begin, setup.end, &*odometry, hooks);
     } else {
       fed = pipeline::RunSequence(
-          *reader, begin, end,
+          *opened.reader, setup.begin, setup.end,
           [&](const io::SensorPacket& packet, TimeNs complete_ns) {
             return mapping->Process(packet.left, packet.right, complete_ns);
           },
@@ -421,16 +307,21 @@ Expected<bool> Run(RunOptions options, Context& ctx, int* exit_code) {
   }
   if (progress) ctx.err << "\r" << std::string(90, ' ') << "\r";
   if (fed.stopped_by.ok()) fed.stopped_by = callback_status;  // met by Odometry::Finish's ticks
-  odometry.reset();  // a mapping cycle still running finishes here
+  return fed;  // a mapping cycle still running finishes as the odometry goes
+}
 
-  // Stopped by an error (a full disk, a corrupt stretch of the input): what was done until then
-  // is written all the same, and the error is the command's result.
+// Writes the run's summary and says how it went. Stopped by an error (a full disk, a corrupt
+// stretch of the input), what was done until then is written all the same, and the error is
+// the command's result.
+Expected<bool> Conclude(const RunOptions& options, const OpenedSequence& opened,
+                        const RunSetup& setup, const pipeline::SequenceRun& fed,
+                        recording::RunRecorder& recorder, Context& ctx) {
   nlohmann::json extra = nlohmann::json::object();
   // Legal input the run could not use well: kept in summary.json, and said at the end.
-  std::vector<std::string> warnings = opened->calibration.warnings;
+  std::vector<std::string> warnings = opened.calibration.warnings;
   const std::string imu_warning =
-      io::ImuStreamWarning(opened->description, fed.imu_samples, fed.imu_first_ns, fed.imu_last_ns,
-                           config->time_surface.rate_hz);
+      io::ImuStreamWarning(opened.description, fed.imu_samples, fed.imu_first_ns, fed.imu_last_ns,
+                           setup.config.time_surface.rate_hz);
   if (!imu_warning.empty()) {
     warnings.push_back(imu_warning);
     if (!options.quiet) ctx.err << "warning: " << imu_warning << "\n";
@@ -438,20 +329,23 @@ Expected<bool> Run(RunOptions options, Context& ctx, int* exit_code) {
   extra["warnings"] = warnings;
   if (!fed.stopped_by.ok()) extra["stopped_by"] = fed.stopped_by.message();
   if (options.repeat > 1) extra["repeat"] = options.repeat;
-  std::optional<RelativeError100Ms> tracking_error;
+  RunPrintout printout{.mapping_only = options.gt_poses,
+                       .out_dir = options.out_dir,
+                       .format = setup.format,
+                       .imu_mode = EnumName(setup.config.imu.mode)};
   if (options.gt_map) {
-    tracking_error = RelativeErrorOver100Ms(recorder.trajectory(), gt_poses);
-    extra["imu_mode"] = EnumName(config->imu.mode);
-    extra["rpe_100ms"] = {{"rotation_deg_rmse", tracking_error->rotation_deg_rmse},
-                          {"translation_m_rmse", tracking_error->translation_m_rmse},
-                          {"pairs", tracking_error->pairs}};
+    printout.tracking_error = RelativeErrorOver100Ms(recorder.trajectory(), setup.gt_poses);
+    extra["imu_mode"] = printout.imu_mode;
+    extra["rpe_100ms"] = {{"rotation_deg_rmse", printout.tracking_error->rotation_deg_rmse},
+                          {"translation_m_rmse", printout.tracking_error->translation_m_rmse},
+                          {"pairs", printout.tracking_error->pairs}};
   }
   Expected<recording::RunRecord> record = recorder.Finish(fed.interrupted, fed.reached_ns, extra);
   if (!fed.stopped_by.ok()) {
     return Status(
         fed.stopped_by.code(),
         StrFormat("%s\nthe run stopped there, after %.2f s of data; %s %s",
-                  fed.stopped_by.message().c_str(), NsToSeconds(fed.reached_ns - begin),
+                  fed.stopped_by.message().c_str(), NsToSeconds(fed.reached_ns - setup.begin),
                   options.out_dir.c_str(),
                   record ? "holds what was done until then"
                          : ("holds what could be written of it (" + record.status().message() + ")")
@@ -465,14 +359,43 @@ Expected<bool> Run(RunOptions options, Context& ctx, int* exit_code) {
                       " holds the run's outputs; its summary.json says why it has no accuracy");
   }
   if (recorder.trajectory().empty() && !fed.interrupted && !options.gt_poses) {
-    return FailedPrecondition(
-        StrFormat("no pose was estimated: the %.3f s of data read hold no tick (one every %.1f ms, "
-                  "time_surface.rate_hz): check --start and --duration against the sequence's span "
-                  "(`aavio info %s`)",
-                  record->data_s, 1e3 / config->time_surface.rate_hz, options.sequence.c_str()));
+    return FailedPrecondition(StrFormat(
+        "no pose was estimated: the %.3f s of data read hold no tick (one every %.1f ms, "
+        "time_surface.rate_hz): check --start and --duration against the sequence's span "
+        "(`aavio info %s`)",
+        record->data_s, 1e3 / setup.config.time_surface.rate_hz, options.sequence.c_str()));
   }
-  PrintRun(*record, options, tracking_error, EnumName(config->imu.mode), ctx);
+  PrintRun(*record, printout, ctx);
   return fed.interrupted;
+}
+
+// Returns whether the run was interrupted (its outputs hold what was done); on an error,
+// `exit_code` says whether it is a wrong argument.
+Expected<bool> Run(RunOptions options, Context& ctx, int* exit_code) {
+  if (options.repeat > 1 && (options.gt_poses || options.gt_map)) {
+    *exit_code = kExitUsage;
+    return InvalidArgument(
+        "--repeat is for the full odometry; --gt-poses and --gt-map follow "
+        "the ground truth, which a repeated sequence does not have");
+  }
+  Expected<OpenedSequence> opened =
+      OpenSequence(options.sequence, options.calibration, options.repeat);
+  if (!opened) return opened.status();
+  RunSetup setup;
+  AAVIO_RETURN_IF_ERROR(PrepareRun(&options, *opened, &setup, ctx, exit_code));
+  // Worker threads of the parallel stages (TBB) and of OpenCV; 0 = all cores.
+  cv::setNumThreads(setup.config.pipeline.num_threads);
+  std::optional<tbb::global_control> workers;
+  if (setup.config.pipeline.num_threads > 0) {
+    workers.emplace(tbb::global_control::max_allowed_parallelism,
+                    static_cast<std::size_t>(setup.config.pipeline.num_threads));
+  }
+  AAVIO_RETURN_IF_ERROR(PrepareGroundTruth(options, *opened, &setup));
+  Expected<std::unique_ptr<recording::RunRecorder>> recorder =
+      OpenRecorder(options, *opened, &setup);
+  if (!recorder) return recorder.status();
+  const pipeline::SequenceRun fed = Drive(options, *opened, setup, **recorder, ctx);
+  return Conclude(options, *opened, setup, fed, **recorder, ctx);
 }
 
 }  // namespace
