@@ -95,11 +95,21 @@ Status RepresentationBuilder::Build(TimeNs t_ns, Observation* out, BuildOptions 
   }
   last_tick_ns_ = t_ns;
   out->t_ns = t_ns;
-
-  // Time surfaces: raw → rectified (bilinear) → median.
-  auto start = Clock::now();
   AAVIO_RETURN_IF_ERROR(Consume(left_, t_ns, true, &out->new_events_left));
   AAVIO_RETURN_IF_ERROR(Consume(right_, t_ns, false, &out->new_events_right));
+  RenderTimeSurfaces(t_ns, options, out);
+  DeriveGradients(out);
+  const std::span<const Event> recent = RecentLeftEvents(t_ns);
+  if (!options.edges) return Status::Ok();
+  BuildAaMap(recent, t_ns, out);
+  SampleEdges(recent, t_ns, out);
+  return Status::Ok();
+}
+
+void RepresentationBuilder::RenderTimeSurfaces(TimeNs t_ns, const BuildOptions& options,
+                                               Observation* out) {
+  // Raw → rectified (bilinear) → median.
+  const auto start = Clock::now();
   const double decay_ms = options.decay_ms > 0.0 ? options.decay_ms : config_.time_surface.decay_ms;
   for (CameraState* camera : {&left_, &right_}) {
     if (camera == &right_ && !options.right_ts) {
@@ -114,13 +124,17 @@ Status RepresentationBuilder::Build(TimeNs t_ns, Observation* out, BuildOptions 
     MedianFilterTs(ts, &ts);
   }
   out->timings.time_surface_ms = MsSince(start);
+}
 
-  start = Clock::now();
+void RepresentationBuilder::DeriveGradients(Observation* out) const {
+  const auto start = Clock::now();
   NegativeTs(out->ts_left, &out->negative_ts_left);
   SobelGradients(out->negative_ts_left, &out->grad_u, &out->grad_v);
   out->timings.derived_ms = MsSince(start);
+}
 
-  // The recent left events: only what AA and ESVO's selection look at.
+std::span<const Event> RepresentationBuilder::RecentLeftEvents(TimeNs t_ns) {
+  // Only what AA and ESVO's selection look at.
   const double keep_ms = std::max(config_.adaptive_accumulation.window_ms, kNewestEventsWindowMs);
   const TimeNs keep_from = t_ns - SecondsToNs(keep_ms * 1e-3);
   while (window_begin_ < window_.size() && window_[window_begin_].t_ns <= keep_from)
@@ -132,11 +146,12 @@ Status RepresentationBuilder::Build(TimeNs t_ns, Observation* out, BuildOptions 
     window_.erase(window_.begin(), window_.begin() + static_cast<std::ptrdiff_t>(window_begin_));
     window_begin_ = 0;
   }
-  const std::span<const Event> recent(window_.data() + window_begin_,
-                                      window_.size() - window_begin_);
-  if (!options.edges) return Status::Ok();
+  return {window_.data() + window_begin_, window_.size() - window_begin_};
+}
 
-  start = Clock::now();
+void RepresentationBuilder::BuildAaMap(std::span<const Event> recent, TimeNs t_ns,
+                                       Observation* out) {
+  const auto start = Clock::now();
   out->timings.edges = true;
   accumulator_.Build(recent, t_ns, &aa_);
   aa_.counts.copyTo(out->aa_counts_raw);
@@ -154,8 +169,11 @@ Status RepresentationBuilder::Build(TimeNs t_ns, Observation* out, BuildOptions 
     out->aa_blocks[b] = {{}, block.events, block.closed, block.span_ns, block.contrast};
   }
   out->timings.aa_ms = MsSince(start);
+}
 
-  start = Clock::now();
+void RepresentationBuilder::SampleEdges(std::span<const Event> recent, TimeNs t_ns,
+                                        Observation* out) const {
+  const auto start = Clock::now();
   if (config_.edge_sampling.mode == SamplingMode::kAdaptiveAccumulation) {
     out->samples = SampleAaMap(aa_, rectification_.left, config_.edge_sampling,
                                TickSeed(config_.seed, t_ns - epoch_ns_));
@@ -163,7 +181,6 @@ Status RepresentationBuilder::Build(TimeNs t_ns, Observation* out, BuildOptions 
     out->samples = SelectNewestEvents(recent, t_ns, rectification_.left, config_.edge_sampling);
   }
   out->timings.sampling_ms = MsSince(start);
-  return Status::Ok();
 }
 
 }  // namespace aavio::events

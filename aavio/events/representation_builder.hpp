@@ -57,6 +57,13 @@ class RepresentationBuilder {
   };
   // Moves the pending events up to t_ns into the time surface (and the left window).
   Status Consume(CameraState& camera, TimeNs t_ns, bool keep_window, std::int64_t* consumed);
+  // The steps of Build: both time surfaces (the right one if asked), the negative time surface
+  // and its gradients, the left events AA and ESVO's selection look at, the AA map, the samples.
+  void RenderTimeSurfaces(TimeNs t_ns, const BuildOptions& options, Observation* out);
+  void DeriveGradients(Observation* out) const;
+  std::span<const Event> RecentLeftEvents(TimeNs t_ns);
+  void BuildAaMap(std::span<const Event> recent, TimeNs t_ns, Observation* out);
+  void SampleEdges(std::span<const Event> recent, TimeNs t_ns, Observation* out) const;
 
   RepresentationConfig config_;
   geometry::StereoRectification rectification_;

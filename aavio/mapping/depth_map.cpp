@@ -140,95 +140,128 @@ void DepthMap::Clean(double max_stddev, double rho_lo, double rho_hi) {
   }
 }
 
+namespace {
+
+constexpr int kRegularizationRadius = 5, kMinNeighbours = 8, kMinCloseNeighbours = 8;
+
+// The occupied cells of a w × h grid in row-major order, with one occupancy bitset per row: the
+// occupied cells of a row between two columns are a contiguous run of ranks (found by popcounts),
+// so a window is visited as 2r + 1 runs in the order of a row-major scan.
+class CellRanks {
+ public:
+  CellRanks(int width, int height)
+      : w_(width),
+        words_((width + 63) / 64),
+        occupied_(static_cast<std::size_t>(height) * words_) {}
+  void Occupy(int x, int y) {
+    occupied_[static_cast<std::size_t>(y) * words_ + (x >> 6)] |= std::uint64_t{1} << (x & 63);
+  }
+  // After the last Occupy: the number of occupied cells.
+  std::size_t Index() {
+    // before_word_[y·words + i]: occupied cells before word i of row y (all rows above included).
+    before_word_.assign(occupied_.size() + 1, 0);
+    for (std::size_t i = 0; i < occupied_.size(); ++i)
+      before_word_[i + 1] = before_word_[i] + std::popcount(occupied_[i]);
+    return static_cast<std::size_t>(before_word_.back());
+  }
+  // Rank of cell (x, y), x in [0, w]: the number of occupied cells before it in row-major order.
+  std::int32_t Rank(int x, int y) const {
+    const std::size_t word = static_cast<std::size_t>(y) * words_ + (x >> 6);
+    if (x == w_) return before_word_[static_cast<std::size_t>(y + 1) * words_];
+    const std::uint64_t below = (std::uint64_t{1} << (x & 63)) - 1;
+    return before_word_[word] + std::popcount(occupied_[word] & below);
+  }
+
+ private:
+  int w_, words_;
+  std::vector<std::uint64_t> occupied_;
+  std::vector<std::int32_t> before_word_;
+};
+
+// The live points in rank order, as columns.
+struct PointColumns {
+  explicit PointColumns(std::size_t n) : slot(n), x(n), y(n), rho(n), s2(n), nu(n), reach(n) {}
+  std::vector<std::int32_t> slot, x, y;
+  std::vector<double> rho, s2, nu;
+  std::vector<double> reach;  // k·σ: Compatible(p, q) = |ρp − ρq| < reach p or reach q
+};
+
+enum RegularizationOutcome : char { kKeep, kFused, kRemove };
+
+// Point i among its neighbours within the radius (as the map was before this pass): kept when
+// they are few, removed when at most kMinCloseNeighbours are compatible, else fused with those
+// (*fused_rho). `close` is scratch space.
+RegularizationOutcome RegularizePoint(std::size_t i, const PointColumns& p, const CellRanks& ranks,
+                                      int w, int h, std::vector<std::int32_t>* close,
+                                      double* fused_rho) {
+  const int r = kRegularizationRadius;
+  const int x = p.x[i], y = p.y[i];
+  const int x_lo = std::max(0, x - r), x_end = std::min(w, x + r + 1);
+  int neighbours = -1;  // the point itself is in its own row's run
+  close->clear();
+  for (int yy = std::max(0, y - r); yy <= std::min(h - 1, y + r); ++yy) {
+    const std::int32_t k_lo = ranks.Rank(x_lo, yy), k_end = ranks.Rank(x_end, yy);
+    neighbours += k_end - k_lo;
+    for (std::int32_t k = k_lo; k < k_end; ++k) {
+      const double d = std::abs(p.rho[i] - p.rho[static_cast<std::size_t>(k)]);
+      if ((d < p.reach[i] || d < p.reach[static_cast<std::size_t>(k)]) &&
+          k != static_cast<std::int32_t>(i))
+        close->push_back(k);
+    }
+  }
+  if (neighbours <= kMinNeighbours) return kKeep;
+  if (static_cast<int>(close->size()) <= kMinCloseNeighbours) return kRemove;  // an outlier
+  // FuseStudentT over the compatible neighbours, keeping only what ρ depends on.
+  double rho_f = p.rho[i], s2_f = p.s2[i], nu_f = p.nu[i];
+  for (const std::int32_t k : *close) {
+    const auto q = static_cast<std::size_t>(k);
+    const double sum = s2_f + p.s2[q], d = rho_f - p.rho[q], nu_min = std::min(nu_f, p.nu[q]);
+    rho_f = (p.s2[q] * rho_f + s2_f * p.rho[q]) / sum;
+    s2_f = (nu_min + d * d / sum) / (nu_min + 1.0) * (s2_f * p.s2[q] / sum);
+    nu_f = nu_min + 1.0;
+  }
+  *fused_rho = rho_f;
+  return kFused;
+}
+
+}  // namespace
+
 void DepthMap::Regularize() {
-  constexpr int kRadius = 5, kMinNeighbours = 8, kMinCloseNeighbours = 8;
   // Every point reads its neighbours from the map as it was before this pass: the new depths and
   // the removals are collected (points in parallel) and applied afterwards.
-  const int w = stereo_.width, h = stereo_.height, r = kRadius;
-  // The live points in row-major cell order, as columns. With one occupancy bitset per row, the
-  // occupied cells of a row between two columns are a contiguous run of this order (found by
-  // popcounts), so a window is visited as 2r + 1 runs in the order of a row-major scan.
-  const int words = (w + 63) / 64;
-  std::vector<std::uint64_t> occupied(static_cast<std::size_t>(h) * words, 0);
+  const int w = stereo_.width, h = stereo_.height;
+  CellRanks ranks(w, h);
+  for (std::size_t slot = 0; slot < points_.size(); ++slot)
+    if (Live(slot)) ranks.Occupy(cell_of_[slot] % w, cell_of_[slot] / w);
+  const std::size_t n = ranks.Index();
+  PointColumns columns(n);
   for (std::size_t slot = 0; slot < points_.size(); ++slot) {
     if (!Live(slot)) continue;
     const int x = cell_of_[slot] % w, y = cell_of_[slot] / w;
-    occupied[static_cast<std::size_t>(y) * words + (x >> 6)] |= std::uint64_t{1} << (x & 63);
-  }
-  // before_word[y·words + i]: occupied cells before word i of row y (all rows above included).
-  std::vector<std::int32_t> before_word(occupied.size() + 1, 0);
-  for (std::size_t i = 0; i < occupied.size(); ++i)
-    before_word[i + 1] = before_word[i] + std::popcount(occupied[i]);
-  const std::size_t n = static_cast<std::size_t>(before_word.back());
-  // Rank of cell (x, y), x in [0, w]: the number of occupied cells before it in row-major order.
-  auto rank = [&](int x, int y) {
-    const std::size_t word = static_cast<std::size_t>(y) * words + (x >> 6);
-    if (x == w) return before_word[static_cast<std::size_t>(y + 1) * words];
-    const std::uint64_t below = (std::uint64_t{1} << (x & 63)) - 1;
-    return before_word[word] + std::popcount(occupied[word] & below);
-  };
-  std::vector<std::int32_t> slot_of(n), x_of(n), y_of(n);
-  std::vector<double> rho(n), s2(n), nu(n), reach(n);
-  for (std::size_t slot = 0; slot < points_.size(); ++slot) {
-    if (!Live(slot)) continue;
-    const int x = cell_of_[slot] % w, y = cell_of_[slot] / w;
-    const auto k = static_cast<std::size_t>(rank(x, y));
+    const auto k = static_cast<std::size_t>(ranks.Rank(x, y));
     const DepthPoint& p = points_[slot];
-    slot_of[k] = static_cast<std::int32_t>(slot);
-    x_of[k] = x;
-    y_of[k] = y;
-    rho[k] = p.rho;
-    s2[k] = p.s2;
-    nu[k] = p.nu;
-    // Compatible(p, q) = |ρp − ρq| < k·σp or < k·σq: each point's k·σ once, not per pair.
-    reach[k] = kCompatibilitySigmas * std::sqrt(p.variance());
+    columns.slot[k] = static_cast<std::int32_t>(slot);
+    columns.x[k] = x;
+    columns.y[k] = y;
+    columns.rho[k] = p.rho;
+    columns.s2[k] = p.s2;
+    columns.nu[k] = p.nu;
+    columns.reach[k] = kCompatibilitySigmas * std::sqrt(p.variance());
   }
-  enum : char { kKeep, kFused, kRemove };
-  std::vector<char> outcome(n, kKeep);
+  std::vector<RegularizationOutcome> outcome(n, kKeep);
   std::vector<double> fused_rho(n, 0.0);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 256),
                     [&](const tbb::blocked_range<std::size_t>& range) {
                       std::vector<std::int32_t> close;
-                      for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                        const int x = x_of[i], y = y_of[i];
-                        const int x_lo = std::max(0, x - r), x_end = std::min(w, x + r + 1);
-                        int neighbours = -1;  // the point itself is in its own row's run
-                        close.clear();
-                        for (int yy = std::max(0, y - r); yy <= std::min(h - 1, y + r); ++yy) {
-                          const std::int32_t k_lo = rank(x_lo, yy), k_end = rank(x_end, yy);
-                          neighbours += k_end - k_lo;
-                          for (std::int32_t k = k_lo; k < k_end; ++k) {
-                            const double d = std::abs(rho[i] - rho[static_cast<std::size_t>(k)]);
-                            if ((d < reach[i] || d < reach[static_cast<std::size_t>(k)]) &&
-                                k != static_cast<std::int32_t>(i))
-                              close.push_back(k);
-                          }
-                        }
-                        if (neighbours <= kMinNeighbours) continue;
-                        if (static_cast<int>(close.size()) <= kMinCloseNeighbours) {
-                          outcome[i] = kRemove;  // an outlier among many neighbours
-                          continue;
-                        }
-                        // FuseStudentT over the compatible neighbours, keeping only what ρ depends
-                        // on.
-                        double rho_f = rho[i], s2_f = s2[i], nu_f = nu[i];
-                        for (const std::int32_t k : close) {
-                          const auto q = static_cast<std::size_t>(k);
-                          const double sum = s2_f + s2[q], d = rho_f - rho[q],
-                                       nu_min = std::min(nu_f, nu[q]);
-                          rho_f = (s2[q] * rho_f + s2_f * rho[q]) / sum;
-                          s2_f = (nu_min + d * d / sum) / (nu_min + 1.0) * (s2_f * s2[q] / sum);
-                          nu_f = nu_min + 1.0;
-                        }
-                        outcome[i] = kFused;
-                        fused_rho[i] = rho_f;
-                      }
+                      for (std::size_t i = range.begin(); i != range.end(); ++i)
+                        outcome[i] =
+                            RegularizePoint(i, columns, ranks, w, h, &close, &fused_rho[i]);
                     });
   // Applied afterwards (removals and new depths do not interact, so the order does not matter).
   for (std::size_t i = 0; i < n; ++i) {
-    const auto slot = static_cast<std::size_t>(slot_of[i]);
+    const auto slot = static_cast<std::size_t>(columns.slot[i]);
     if (outcome[i] == kRemove)
-      Remove(slot_of[i]);
+      Remove(columns.slot[i]);
     else if (outcome[i] == kFused)
       points_[slot].rho = fused_rho[i];
   }
