@@ -235,12 +235,9 @@ bool ImuBackEnd::InitialiseGravityAndVelocities() {
   return true;
 }
 
-double ImuBackEnd::GaussNewtonStep(bool fix_biases_and_gravity) {
-  const int n = static_cast<int>(frames_.size());
-  const int bg = 3 * n, ba = 3 * n + 3, dg = 3 * n + 6, unknowns = 3 * n + 8;
-  // Pre-integrations whose biases are far from the long-term ones are integrated again (the
-  // window's own estimate stays near them: first order covers it).
-  for (int j = 1; fix_biases_and_gravity && j < n; ++j) {
+void ImuBackEnd::ReintegrateFarFromBiases() {
+  // The window's own estimate stays near the long-term biases: first order covers it.
+  for (std::size_t j = 1; j < frames_.size(); ++j) {
     Preintegrated& P = frames_[j].from_previous;
     if ((P.gyro_bias - state_.gyro_bias).norm() > kReintegrateGyro ||
         (P.accel_bias - state_.accel_bias).norm() > kReintegrateAccel) {
@@ -252,6 +249,42 @@ double ImuBackEnd::GaussNewtonStep(bool fix_biases_and_gravity) {
       }
     }
   }
+}
+
+ImuBackEnd::InertialFactor ImuBackEnd::Linearize(
+    const Frame& fi, const Frame& fj, const Eigen::Matrix<double, 3, 2>& dg_ddelta) const {
+  const Preintegrated& P = fj.from_previous;
+  const double dt = P.dt_s;
+  const Eigen::Matrix3d Rt = fi.R_world_imu.transpose();
+  const Eigen::Vector3d dbg = state_.gyro_bias - P.gyro_bias;
+  const Eigen::Vector3d& g = state_.gravity_world;
+  InertialFactor f;
+  const Eigen::Vector3d r_R = LogSO3(P.DeltaR(state_.gyro_bias).transpose() * Rt * fj.R_world_imu);
+  f.r.segment<3>(0) = r_R;
+  f.r.segment<3>(3) =
+      Rt * (fj.v_world - fi.v_world - g * dt) - P.DeltaV(state_.gyro_bias, state_.accel_bias);
+  f.r.segment<3>(6) = Rt * (fj.p_world_imu - fi.p_world_imu - fi.v_world * dt - 0.5 * g * dt * dt) -
+                      P.DeltaP(state_.gyro_bias, state_.accel_bias);
+  // Jacobian blocks over (v_i, v_j, b_g, b_a, δg).
+  f.J.setZero();
+  f.J.block<3, 3>(0, 6) = -geometry::InverseRightJacobianSO3(r_R) * ExpSO3(r_R).transpose() *
+                          geometry::RightJacobianSO3(P.dR_dbg * dbg) * P.dR_dbg;
+  f.J.block<3, 3>(3, 0) = -Rt;
+  f.J.block<3, 3>(3, 3) = Rt;
+  f.J.block<3, 3>(3, 6) = -P.dv_dbg;
+  f.J.block<3, 3>(3, 9) = -P.dv_dba;
+  f.J.block<3, 2>(3, 12) = -Rt * dt * dg_ddelta;
+  f.J.block<3, 3>(6, 0) = -Rt * dt;
+  f.J.block<3, 3>(6, 6) = -P.dp_dbg;
+  f.J.block<3, 3>(6, 9) = -P.dp_dba;
+  f.J.block<3, 2>(6, 12) = -0.5 * Rt * dt * dt * dg_ddelta;
+  return f;
+}
+
+double ImuBackEnd::GaussNewtonStep(bool fix_biases_and_gravity) {
+  const int n = static_cast<int>(frames_.size());
+  const int bg = 3 * n, ba = 3 * n + 3, dg = 3 * n + 6, unknowns = 3 * n + 8;
+  if (fix_biases_and_gravity) ReintegrateFarFromBiases();
   const double G = kGravityMS2;
   const Eigen::Vector3d u = state_.gravity_world / G;
   const Eigen::Matrix<double, 3, 2> dg_ddelta = -G * Hat(u) * TangentBasis(u);
@@ -260,44 +293,16 @@ double ImuBackEnd::GaussNewtonStep(bool fix_biases_and_gravity) {
   double cost = 0.0;
   for (int j = 1; j < n; ++j) {
     const int i = j - 1;
-    const Frame& fi = frames_[i];
-    const Frame& fj = frames_[j];
-    const Preintegrated& P = fj.from_previous;
-    const double dt = P.dt_s;
-    const Eigen::Matrix3d Rt = fi.R_world_imu.transpose();
-    const Eigen::Vector3d dbg = state_.gyro_bias - P.gyro_bias;
-    const Eigen::Vector3d& g = state_.gravity_world;
-
-    Eigen::Matrix<double, 9, 1> r;
-    const Eigen::Vector3d r_R =
-        LogSO3(P.DeltaR(state_.gyro_bias).transpose() * Rt * fj.R_world_imu);
-    r.segment<3>(0) = r_R;
-    r.segment<3>(3) =
-        Rt * (fj.v_world - fi.v_world - g * dt) - P.DeltaV(state_.gyro_bias, state_.accel_bias);
-    r.segment<3>(6) = Rt * (fj.p_world_imu - fi.p_world_imu - fi.v_world * dt - 0.5 * g * dt * dt) -
-                      P.DeltaP(state_.gyro_bias, state_.accel_bias);
-    // Jacobian blocks over (v_i, v_j, b_g, b_a, δg).
-    Eigen::Matrix<double, 9, 14> J = Eigen::Matrix<double, 9, 14>::Zero();
-    J.block<3, 3>(0, 6) = -geometry::InverseRightJacobianSO3(r_R) * ExpSO3(r_R).transpose() *
-                          geometry::RightJacobianSO3(P.dR_dbg * dbg) * P.dR_dbg;
-    J.block<3, 3>(3, 0) = -Rt;
-    J.block<3, 3>(3, 3) = Rt;
-    J.block<3, 3>(3, 6) = -P.dv_dbg;
-    J.block<3, 3>(3, 9) = -P.dv_dba;
-    J.block<3, 2>(3, 12) = -Rt * dt * dg_ddelta;
-    J.block<3, 3>(6, 0) = -Rt * dt;
-    J.block<3, 3>(6, 6) = -P.dp_dbg;
-    J.block<3, 3>(6, 9) = -P.dp_dba;
-    J.block<3, 2>(6, 12) = -0.5 * Rt * dt * dt * dg_ddelta;
-    const Eigen::Matrix<double, 9, 9>& W = fj.information;
-    cost += r.dot(W * r);
-
+    const InertialFactor f = Linearize(frames_[i], frames_[j], dg_ddelta);
+    const Eigen::Matrix<double, 9, 9>& W = frames_[j].information;
+    cost += f.r.dot(W * f.r);
+    // The factor's 14 columns scattered into the window's unknowns.
     const int cols[5] = {3 * i, 3 * j, bg, ba, dg};
     const int widths[5] = {3, 3, 3, 3, 2};
     const int offsets[5] = {0, 3, 6, 9, 12};
-    const Eigen::Matrix<double, 14, 9> JtW = J.transpose() * W;
-    const Eigen::Matrix<double, 14, 14> JtWJ = JtW * J;
-    const Eigen::Matrix<double, 14, 1> JtWr = JtW * r;
+    const Eigen::Matrix<double, 14, 9> JtW = f.J.transpose() * W;
+    const Eigen::Matrix<double, 14, 14> JtWJ = JtW * f.J;
+    const Eigen::Matrix<double, 14, 1> JtWr = JtW * f.r;
     for (int a = 0; a < 5; ++a) {
       for (int c = 0; c < 5; ++c) {
         H.block(cols[a], cols[c], widths[a], widths[c]) +=

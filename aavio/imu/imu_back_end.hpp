@@ -89,6 +89,16 @@ class ImuBackEnd {
   /// One Gauss–Newton step over velocities, biases and gravity (or the velocities only); the
   /// cost before it.
   double GaussNewtonStep(bool fix_biases_and_gravity);
+  /// Pre-integrations whose biases are far from the long-term ones are integrated again.
+  void ReintegrateFarFromBiases();
+  /// The pre-integration residual between two consecutive frames (rotation, velocity, position)
+  /// and its Jacobian over (v_i, v_j, b_g, b_a, δg), δg on gravity's 2-D tangent.
+  struct InertialFactor {
+    Eigen::Matrix<double, 9, 1> r;
+    Eigen::Matrix<double, 9, 14> J;
+  };
+  InertialFactor Linearize(const Frame& fi, const Frame& fj,
+                           const Eigen::Matrix<double, 3, 2>& dg_ddelta) const;
 
   ImuConfig config_;
   geometry::RigidTransform T_imu_cam_, T_cam_imu_;
