@@ -22,36 +22,21 @@
 #include "aavio/eval/sample_ceiling.hpp"
 #include "aavio/geometry/stereo_rig.hpp"
 #include "aavio/imu/gravity_direction.hpp"
-#include "aavio/io/depth_folder_writer.hpp"
 #include "aavio/io/output_folder.hpp"
-#include "aavio/io/ply.hpp"
 #include "aavio/io/trajectory_writing.hpp"
-#include "aavio/mapping/global_cloud.hpp"
 #include "aavio/pipeline/mapping_front_end.hpp"
 #include "aavio/pipeline/odometry.hpp"
 #include "aavio/pipeline/stage_timings.hpp"
-#include "aavio/recording/depth_images.hpp"
 #include "aavio/recording/depth_scorer.hpp"
 #include "aavio/recording/event_gaps.hpp"
+#include "aavio/recording/map_outputs.hpp"
 #include "aavio/recording/mapping_counts.hpp"
 #include "aavio/recording/run_evaluation.hpp"
+#include "aavio/recording/run_files.hpp"
+#include "aavio/recording/tick_counts.hpp"
+#include "aavio/recording/timings_csv.hpp"
 
 namespace aavio::recording {
-
-/// The names of what a run folder holds (written here; read by `aavio eval --run`, `aavio
-/// report` and the Python module's load_run).
-namespace run_files {
-inline constexpr char kTrajectory[] = "stamped_traj_estimate.txt";
-inline constexpr char kTrajectoryPart[] = "stamped_traj_estimate.txt.part";  ///< while it goes
-inline constexpr char kVelocity[] = "stamped_velocity_estimate.txt";         ///< one per pose
-inline constexpr char kSummary[] = "summary.json";
-inline constexpr char kTimings[] = "timings.csv";
-inline constexpr char kConfig[] = "config.yaml";
-inline constexpr char kCloud[] = "map.ply";
-inline constexpr char kCloudPart[] = "map.ply.part";  ///< map.ply's points while the run goes
-inline constexpr char kDepthDir[] = "depth";
-inline constexpr char kReserve[] = ".aavio_reserve";  ///< space for Finish on a full disk
-}  // namespace run_files
 
 struct RunRecorderOptions {
   std::string out_dir;
@@ -133,27 +118,33 @@ class RunRecorder {
 
   const std::vector<geometry::StampedPose>& trajectory() const { return trajectory_; }
   /// Ticks per tracking status so far ("ok", "lost", "no_map").
-  const std::map<std::string, int>& status_counts() const { return status_counts_; }
+  const std::map<std::string, int>& status_counts() const { return counts_.status_counts(); }
   const std::string& out_dir() const { return options_.out_dir; }
 
  private:
   RunRecorder(RunRecorderOptions options, const geometry::StereoRig& rig,
-              const pipeline::OdometryConfig& config, io::DepthFolderWriter depth_writer,
-              io::PlyWriter cloud_file, io::DiskReserve reserve);
+              const pipeline::OdometryConfig& config, MapOutputs maps, io::DiskReserve reserve);
   void AddRepresentation(TimeNs t_ns, const events::RepresentationTimings& t);
-  /// stamped_traj_estimate.txt from its part file, or from memory if a write to that failed.
-  /// `rewrite`: the trajectory was turned since it was streamed; written again whole.
-  Status CloseTrajectory(bool rewrite);
-  /// stamped_velocity_estimate.txt and the trajectory in options_.layout; summary.json "motion".
-  /// `gravity` as measured in the first camera's world; `R_out_first`: that world → the one the
-  /// files are written in.
-  nlohmann::json WriteMotion(const std::optional<imu::GravityDirection>& gravity,
-                             const Eigen::Matrix3d& R_out_first, std::vector<Status>* failures);
   void AddCycleReport(const mapping::MappingCycleReport& r);
-  /// A confirmed map: into the cloud, and every depth_every_-th into depth/ (scored there in the
+  /// A confirmed map: into map.ply and depth/ (what went to depth/ scored there in the
   /// odometry's modes), drawn over the time surface of `observation` (may be null).
   Status AddConfirmedMap(const mapping::LocalMap& map, const events::Observation* observation,
                          bool score_written);
+  /// A mapping cycle on ground-truth poses against the nearest ground-truth frame: the map's
+  /// depth, and what its samples could cover at best.
+  Status ScoreCycleOnGroundTruth(const pipeline::MappingCycle& cycle, bool confirmed);
+  /// stamped_traj_estimate.txt from its part file, or from memory if a write to that failed.
+  /// `rewrite`: the trajectory was turned since it was streamed; written again whole.
+  Status CloseTrajectory(bool rewrite);
+  /// Closes every file (the trajectory and map.ply turned z-up with World::kGravity and a
+  /// measured gravity: `R_out_first`); failures into `failures`. Returns summary.json "motion".
+  nlohmann::json CloseFiles(std::optional<Eigen::Matrix3d>* R_out_first,
+                            std::vector<Status>* failures);
+  /// The ground truth's scores of the run.
+  void Score(RunRecord* record) const;
+  /// summary.json's figures (in record->summary).
+  void Summarize(bool interrupted, TimeNs end_ns, nlohmann::json motion,
+                 const std::optional<Eigen::Matrix3d>& R_out_first, RunRecord* record);
 
   RunRecorderOptions options_;
   pipeline::OdometryConfig config_;
@@ -161,39 +152,26 @@ class RunRecorder {
   std::optional<geometry::RigidTransform> T_imu_cam_;  // the rig's IMU ← rectified left camera
   imu::GravityDirectionEstimator gravity_;
   std::chrono::steady_clock::time_point wall_start_;
-  io::DepthFolderWriter depth_writer_;
-  std::ofstream csv_;
-  int depth_every_;
-  double cloud_depth_m_;
-  mapping::GlobalCloud cloud_;
-  io::PlyWriter cloud_file_;       ///< the cloud's points go to disk as they come
-  std::ofstream trajectory_file_;  ///< the poses too (stamped_traj_estimate.txt.part)
+  // What it writes as the run goes.
+  MapOutputs maps_;
+  TimingsCsv csv_;
+  std::ofstream trajectory_file_;  ///< the poses (stamped_traj_estimate.txt.part)
   std::optional<io::DiskReserve> reserve_;
-  InverseDepthColours colours_;
+  // What it scores against.
   std::optional<RunGroundTruth> truth_;
   std::vector<geometry::StampedPose> gt_poses_;
   std::optional<DepthScorer> scorer_;
   std::optional<eval::SampleCeiling> ceiling_;
-  double evaluation_ms_ = 0.0;  ///< scoring depth: not part of the real-time factor
-
+  int mapping_cycles_on_ground_truth_ = 0;  ///< AddMappingCycle's
+  double evaluation_ms_ = 0.0;              ///< scoring depth: not part of the real-time factor
+  // What it counts.
   std::vector<geometry::StampedPose> trajectory_;
+  TickCounts counts_;
   pipeline::StageTimings timings_;
   MappingCounts mapping_counts_;
   EventGaps event_gaps_;
-  std::vector<std::array<double, 2>> imu_only_;  ///< stretches carried on the IMU alone [s]
-  bool previous_imu_only_ = false;
-  std::map<std::string, int> status_counts_, lost_reasons_, registration_stops_;
-  std::int64_t dropped_events_ = 0;  // by pipeline.max_buffered_events
   std::int64_t events_ = 0, ticks_ = 0;
-  std::int64_t events_since_tick_ = 0;  ///< timings.csv's `events`
-  int bootstraps_ = 0, reinitialisations_ = 0, skipped_cycles_ = 0, mapping_cycles_ = 0;
-  int mapping_cycles_on_ground_truth_ = 0;  ///< AddMappingCycle's
-  int bootstrap_failures_ = 0;
-  std::optional<TimeNs> first_bootstrap_ns_;  // data time of the first map
-  std::string last_bootstrap_failure_;
-  int confirmed_maps_ = 0;
-  std::size_t confirmed_points_ = 0;
-  nlohmann::json over_time_ = nlohmann::json::array();
+  nlohmann::json over_time_ = nlohmann::json::array();  ///< [data s, resident MB, wall s]
 };
 
 }  // namespace aavio::recording
