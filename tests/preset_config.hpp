@@ -22,4 +22,12 @@ inline pipeline::OdometryConfig PresetConfig(const std::string& name,
   return config.ok() ? *config : pipeline::OdometryConfig{};
 }
 
+/// The indoor preset on the mini twin's rig. 160×120 px constrains translation weakly: the
+/// preset's correction gate, for 240×180, is widened to 0.3 m.
+inline pipeline::OdometryConfig MiniConfig(const std::optional<geometry::StereoRig>& rig) {
+  pipeline::OdometryConfig config = PresetConfig("indoor", rig);
+  config.tracking.max_correction_m = 0.3;
+  return config;
+}
+
 }  // namespace aavio::testing

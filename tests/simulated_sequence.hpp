@@ -5,8 +5,10 @@
 
 #include <gtest/gtest.h>
 
+#include <map>
 #include <optional>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "aavio/io/calibration.hpp"
@@ -65,6 +67,18 @@ inline SimulatedSequence Simulate(const std::string& preset, double duration_s, 
     if (truth.ok()) s.truth = *truth;
   }
   return s;
+}
+
+/// The mini preset's twin (160×120 px, typical sensor) of `duration_s` from `seed`, simulated once
+/// per test program and kept for every test that asks for the same one.
+inline const SimulatedSequence& MiniTwin(double duration_s, std::uint64_t seed,
+                                         TimeNs packet_ns = 10 * kNsPerMs) {
+  static std::map<std::tuple<double, std::uint64_t, TimeNs>, SimulatedSequence> twins;
+  const auto key = std::make_tuple(duration_s, seed, packet_ns);
+  auto it = twins.find(key);
+  if (it == twins.end())
+    it = twins.emplace(key, Simulate("mini", duration_s, seed, packet_ns)).first;
+  return it->second;
 }
 
 }  // namespace aavio::testing

@@ -10,6 +10,7 @@
 #include <numbers>
 
 #include "aavio/io/sequence.hpp"
+#include "tests/little_endian.hpp"
 #include "tests/test_utils.hpp"
 
 namespace aavio::io {
@@ -125,7 +126,7 @@ class Aedat4Writer {
  private:
   template <typename T>
   static void Put(std::string* b, T v) {
-    b->append(reinterpret_cast<const char*>(&v), sizeof v);
+    testing::AppendLittleEndian(b, v);
   }
   static void Header(std::string* b, const char* ident) {
     b->clear();

@@ -4,6 +4,7 @@
 
 #include <fstream>
 
+#include "tests/little_endian.hpp"
 #include "tests/test_utils.hpp"
 
 namespace aavio::io {
@@ -13,14 +14,8 @@ namespace {
 class RawWriter {
  public:
   explicit RawWriter(std::string header) : bytes_(std::move(header)) {}
-  void Word16(unsigned w) {
-    bytes_.push_back(static_cast<char>(w & 0xFF));
-    bytes_.push_back(static_cast<char>((w >> 8) & 0xFF));
-  }
-  void Word32(std::uint32_t w) {
-    Word16(w & 0xFFFF);
-    Word16(w >> 16);
-  }
+  void Word16(unsigned w) { testing::AppendLittleEndian(&bytes_, static_cast<std::uint16_t>(w)); }
+  void Word32(std::uint32_t w) { testing::AppendLittleEndian(&bytes_, w); }
   // EVT 2.0
   void Evt2TimeHigh(std::uint64_t t_us) {
     Word32(0x80000000u | static_cast<std::uint32_t>((t_us >> 6) & 0x0FFFFFFF));

@@ -7,6 +7,7 @@
 
 #include <fstream>
 
+#include "tests/little_endian.hpp"
 #include "tests/test_utils.hpp"
 
 namespace aavio::io {
@@ -16,8 +17,8 @@ namespace {
 class CdrWriter {
  public:
   CdrWriter() : bytes_{0x00, 0x01, 0x00, 0x00} {}
-  void U32(std::uint32_t v) { Fixed(v, 4); }
-  void U64(std::uint64_t v) { Fixed(v, 8); }
+  void U32(std::uint32_t v) { Fixed(v); }
+  void U64(std::uint64_t v) { Fixed(v); }
   void String(const std::string& s) {
     U32(static_cast<std::uint32_t>(s.size() + 1));
     bytes_.insert(bytes_.end(), s.begin(), s.end());
@@ -31,11 +32,11 @@ class CdrWriter {
   std::vector<unsigned char> bytes_;
 
  private:
-  void Fixed(std::uint64_t v, std::size_t n) {
-    while ((bytes_.size() - 4) % n != 0)
+  template <typename T>
+  void Fixed(T v) {
+    while ((bytes_.size() - 4) % sizeof(T) != 0)  // CDR aligns to the size
       bytes_.push_back(0);
-    for (std::size_t k = 0; k < n; ++k)
-      bytes_.push_back(static_cast<unsigned char>(v >> (8 * k)));
+    testing::AppendLittleEndian(&bytes_, v);
   }
 };
 
@@ -56,12 +57,10 @@ std::vector<unsigned char> EventPacket(const std::string& encoding, std::uint64_
 }
 
 void Put16(std::vector<unsigned char>* b, unsigned w) {
-  b->push_back(static_cast<unsigned char>(w & 0xFF));
-  b->push_back(static_cast<unsigned char>(w >> 8));
+  testing::AppendLittleEndian(b, static_cast<std::uint16_t>(w));
 }
 void Put32(std::vector<unsigned char>* b, std::uint32_t w) {
-  Put16(b, w & 0xFFFF);
-  Put16(b, w >> 16);
+  testing::AppendLittleEndian(b, w);
 }
 
 /// A rosbag2 sqlite3 file with the tables rosbag2 writes; messages: (topic id, bag time, data).
@@ -117,8 +116,7 @@ class McapWriter {
   }
   template <typename T>
   static void Int(Bytes* b, T v) {
-    for (std::size_t k = 0; k < sizeof(T); ++k)
-      b->push_back(static_cast<unsigned char>(static_cast<std::uint64_t>(v) >> (8 * k)));
+    testing::AppendLittleEndian(b, v);
   }
   static void Record(std::uint8_t op, const Bytes& content, Bytes* to) {
     to->push_back(op);

@@ -15,14 +15,11 @@ namespace aavio::pipeline {
 namespace {
 
 const aavio::testing::SimulatedSequence& Mini() {
-  static const aavio::testing::SimulatedSequence mini = aavio::testing::Simulate("mini", 1.5, 3);
-  return mini;
+  return aavio::testing::MiniTwin(1.5, 3);
 }
 
 OdometryConfig Config() {
-  OdometryConfig config = aavio::testing::PresetConfig("indoor", Mini().rig);
-  config.tracking.max_correction_m = 0.3;  // as odometry_test: 160×120 px
-  return config;
+  return aavio::testing::MiniConfig(Mini().rig);
 }
 
 struct Streams {

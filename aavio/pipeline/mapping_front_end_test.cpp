@@ -15,8 +15,7 @@ namespace aavio::pipeline {
 namespace {
 
 const aavio::testing::SimulatedSequence& Mini() {
-  static const aavio::testing::SimulatedSequence mini = aavio::testing::Simulate("mini", 1.5, 4);
-  return mini;
+  return aavio::testing::MiniTwin(1.5, 4);
 }
 
 struct MappingRun {

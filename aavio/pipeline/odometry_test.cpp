@@ -22,15 +22,11 @@ namespace aavio::pipeline {
 namespace {
 
 const aavio::testing::SimulatedSequence& Mini() {
-  static const aavio::testing::SimulatedSequence mini = aavio::testing::Simulate("mini", 1.5, 3);
-  return mini;
+  return aavio::testing::MiniTwin(1.5, 3);
 }
 
 OdometryConfig RpgPreset() {
-  OdometryConfig config = aavio::testing::PresetConfig("indoor", Mini().rig);
-  // 160×120 px constrains translation weakly; the rpg preset's gate is for 240×180 (cli_test).
-  config.tracking.max_correction_m = 0.3;
-  return config;
+  return aavio::testing::MiniConfig(Mini().rig);
 }
 
 /// Every tick of the recording; the cameras see nothing in [blind_from_s, blind_to_s); the IMU's

@@ -14,15 +14,11 @@ namespace {
 constexpr TimeNs kPacketNs = 10 * kNsPerMs;
 
 const aavio::testing::SimulatedSequence& Mini() {
-  static const aavio::testing::SimulatedSequence mini =
-      aavio::testing::Simulate("mini", 1.0, 5, kPacketNs);
-  return mini;
+  return aavio::testing::MiniTwin(1.0, 5, kPacketNs);
 }
 
 OdometryConfig Config() {
-  OdometryConfig config = aavio::testing::PresetConfig("indoor", Mini().rig);
-  config.tracking.max_correction_m = 0.3;  // as odometry_test: 160×120 px
-  return config;
+  return aavio::testing::MiniConfig(Mini().rig);
 }
 
 std::unique_ptr<io::SequenceReader> OpenMini() {

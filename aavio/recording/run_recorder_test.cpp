@@ -22,14 +22,11 @@ namespace fs = std::filesystem;
 using Mini = aavio::testing::SimulatedSequence;
 
 const Mini& MiniSequence() {
-  static const Mini mini = aavio::testing::Simulate("mini", 1.5, 2, kNsPerMs);
-  return mini;
+  return aavio::testing::MiniTwin(1.5, 2, kNsPerMs);
 }
 
 pipeline::OdometryConfig Config() {
-  pipeline::OdometryConfig config = aavio::testing::PresetConfig("indoor", MiniSequence().rig);
-  config.tracking.max_correction_m = 0.3;  // 160×120 px (odometry_test)
-  return config;
+  return aavio::testing::MiniConfig(MiniSequence().rig);
 }
 
 // A FIFO of 5 cycles confirms a map every cycle once full: many maps in 1.5 s (the indoor preset's
