@@ -1,5 +1,5 @@
 #pragma once
-/// Streaming use of the odometry (docs/architecture.md): push each camera's events and the IMU
+/// Streaming use of the odometry (docs/api.md): push each camera's events and the IMU
 /// samples as a driver delivers them — from any thread, in packets of any size — and receive every
 /// tick's pose, and each new local map, through `on_tick`.
 ///
