@@ -11,15 +11,29 @@ namespace aavio::config {
 
 namespace {
 
-// A shipped overlay, and what of it depends on the sensor (a reference's budget per dataset).
+// A configuration file's entries: those of its small_sensor section apply (without that prefix)
+// only on a small sensor, after the others.
+Status ApplyFileEntries(std::vector<ConfigEntry> entries, const ConfigSources& sources,
+                        pipeline::OdometryConfig* config) {
+  const std::string prefix = std::string(pipeline::kSmallSensorSection) + ".";
+  std::vector<ConfigEntry> small_sensor;
+  std::erase_if(entries, [&](ConfigEntry& e) {
+    if (!e.key.starts_with(prefix)) return false;
+    e.key.erase(0, prefix.size());
+    small_sensor.push_back(std::move(e));
+    return true;
+  });
+  AAVIO_RETURN_IF_ERROR(ApplyConfigEntries(entries, config));
+  if (!sources.sensor || !sources.sensor->small()) return Status::Ok();
+  return ApplyConfigEntries(small_sensor, config);
+}
+
+// A shipped overlay by its name.
 Status ApplyOverlay(const std::string& name, const ConfigSources& sources,
                     pipeline::OdometryConfig* config) {
   Expected<std::vector<ConfigEntry>> entries = io::OverlayEntries(name);
   if (!entries) return entries.status();
-  AAVIO_RETURN_IF_ERROR(ApplyConfigEntries(*entries, config));
-  if (!sources.sensor) return Status::Ok();
-  return ApplyConfigEntries(
-      pipeline::ToConfigEntries(pipeline::OverlaySensorSettings(name, *sources.sensor)), config);
+  return ApplyFileEntries(std::move(*entries), sources, config);
 }
 
 // Applies the preset, the files, the overlays and the --set overrides onto `config`.
@@ -27,7 +41,7 @@ Status ApplySources(const ConfigSources& sources, pipeline::OdometryConfig* conf
   if (!sources.preset.empty()) {
     Expected<std::vector<ConfigEntry>> entries = io::PresetEntries(sources.preset);
     if (!entries) return entries.status();
-    AAVIO_RETURN_IF_ERROR(ApplyConfigEntries(*entries, config));
+    AAVIO_RETURN_IF_ERROR(ApplyFileEntries(std::move(*entries), sources, config));
   }
   const std::vector<std::string> overlays = io::OverlayNames();
   for (const std::string& file : sources.files) {
@@ -41,7 +55,7 @@ Status ApplySources(const ConfigSources& sources, pipeline::OdometryConfig* conf
     }
     Expected<std::vector<ConfigEntry>> entries = io::ReadConfigYaml(file);
     if (!entries) return entries.status();
-    AAVIO_RETURN_IF_ERROR(ApplyConfigEntries(*entries, config));
+    AAVIO_RETURN_IF_ERROR(ApplyFileEntries(std::move(*entries), sources, config));
   }
   for (const std::string& name : sources.overlays)
     AAVIO_RETURN_IF_ERROR(ApplyOverlay(name, sources, config));

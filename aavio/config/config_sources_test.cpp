@@ -91,6 +91,25 @@ TEST(ConfigSources, ReferenceOverlaysTakeTheirBudgetForTheSensor) {
       Budget(3000, 3000));
 }
 
+// A file's small_sensor section applies on a sensor under 0.1 Mpx only, after the file's other
+// keys (the reference overlays' budgets are such sections); without a rig, never.
+TEST(ConfigSources, AFilesSmallSensorSectionAppliesOnSmallSensorsOnly) {
+  const std::string file = (testing::ScratchDir() / "budget.yaml").string();
+  testing::WriteFile(file,
+                     "tracking:\n  max_iterations: 12\nsmall_sensor:\n  tracking:\n"
+                     "    max_iterations: 17\n");
+  auto iterations = [&](const std::optional<std::string>& rig) {
+    ConfigSources sources{.preset = "indoor", .files = {file}};
+    if (rig) ConfigureForRig(Rig(*rig), &sources);
+    Expected<pipeline::OdometryConfig> config = ResolveOdometryConfig(sources);
+    EXPECT_TRUE(config.ok()) << config.status().message();
+    return config.ok() ? config->tracking.max_iterations : -1;
+  };
+  EXPECT_EQ(iterations("rpg"), 17);   // 240 x 180
+  EXPECT_EQ(iterations("dsec"), 12);  // 640 x 480
+  EXPECT_EQ(iterations(std::nullopt), 12);
+}
+
 // `--config esvo` names the shipped overlay unless a configuration file of that name is in the
 // working folder; a folder of that name (a run's output, say) does not hide it.
 TEST(ConfigSources, AnOverlayNameIsAFileOnlyIfSuchAFileIsThere) {

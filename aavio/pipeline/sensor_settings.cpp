@@ -40,6 +40,10 @@ SensorFacts SensorFacts::Of(const geometry::StereoRig& rig) {
   return {rig.width(), rig.height(), rig.focal_px(), rig.baseline_m()};
 }
 
+bool SensorFacts::small() const {
+  return static_cast<long>(width_px) * height_px < kSmallSensorPixels;
+}
+
 std::string SensorFacts::Describe() const {
   return StrFormat("%d x %d px, f %.1f px, baseline %.4f m (f*b %.1f px*m)", width_px, height_px,
                    focal_px, baseline_m, focal_px * baseline_m);
@@ -48,7 +52,7 @@ std::string SensorFacts::Describe() const {
 std::vector<SensorSetting> DeriveSensorSettings(const SensorFacts& sensor,
                                                 const OdometryConfig& scene) {
   const int w = sensor.width_px, h = sensor.height_px;
-  const bool small = static_cast<long>(w) * h < kSmallSensorPixels;
+  const bool small = sensor.small();
   const std::string size = small ? "under 0.1 Mpx" : "0.1 Mpx or more";
   std::vector<SensorSetting> s;
 
@@ -102,21 +106,6 @@ std::vector<SensorSetting> DeriveSensorSettings(const SensorFacts& sensor,
                          "range: 0.51 / (f*b %.1f x %.3g 1/m = %.1f px)",
                          sensor.focal_px * sensor.baseline_m, rho_mid, disparity_mid_px)});
   return s;
-}
-
-std::vector<SensorSetting> OverlaySensorSettings(const std::string& overlay,
-                                                 const SensorFacts& sensor) {
-  if (static_cast<long>(sensor.width_px) * sensor.height_px >= kSmallSensorPixels) return {};
-  if (overlay == "esvo") {
-    const std::string rule = "ESVO on a sensor under 0.1 Mpx: its rpg budget of 1000 newest events";
-    return {{"edge_sampling.num_points", "1000", rule}, {"mapping.max_points", "1000", rule}};
-  }
-  if (overlay == "paper") {
-    const std::string rule =
-        "the ICRA code on a sensor under 0.1 Mpx: its rpg budget of 5000 AA samples, 1000 mapped";
-    return {{"edge_sampling.num_points", "5000", rule}, {"mapping.max_points", "1000", rule}};
-  }
-  return {};
 }
 
 std::vector<ConfigEntry> ToConfigEntries(const std::vector<SensorSetting>& settings) {

@@ -29,6 +29,9 @@ struct SensorFacts {
   double baseline_m = 0.0;  ///< b
 
   static SensorFacts Of(const geometry::StereoRig& rig);
+  /// Under 0.1 Mpx (DAVIS240C 43 kpx, DAVIS346 90 kpx; VGA is 307 kpx): the reference
+  /// configurations differ in the same way between rpg and DSEC.
+  bool small() const;
   /// "1280 x 720 px, f 974.8 px, baseline 0.1185 m (f*b 115.5 px*m)"
   std::string Describe() const;
 };
@@ -45,13 +48,10 @@ struct SensorSetting {
 std::vector<SensorSetting> DeriveSensorSettings(const SensorFacts& sensor,
                                                 const OdometryConfig& scene);
 
-/// The reference settings that depend on the sensor, applied after a shipped overlay of a reference
-/// configuration: `esvo` (`aavio run --esvo`) takes ESVO's newest 1 000 events on rpg's DAVIS240C
-/// (under 0.1 Mpx; 10 000 on DSEC's 640×480 are the overlay's), `paper` the ICRA code's 5 000 AA
-/// samples there, of which mapping takes 1 000 (2 500 on DSEC's rig are the sensor's settings).
-/// None for other overlays.
-std::vector<SensorSetting> OverlaySensorSettings(const std::string& overlay,
-                                                 const SensorFacts& sensor);
+/// A configuration file's section whose keys apply only on a small sensor (SensorFacts::small):
+/// where a reference's settings differ between rpg's DAVIS240C and larger sensors (the esvo and
+/// paper overlays' sample budgets).
+inline constexpr char kSmallSensorSection[] = "small_sensor";
 
 /// The settings as configuration entries, to apply before a preset's (each entry's origin names
 /// its rule, for messages).
