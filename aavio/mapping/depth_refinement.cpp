@@ -152,7 +152,7 @@ double JacobianNorm2(const Residual& f, double rho, double h, const Evaluation& 
 }
 
 bool RefineOne(const RefinementInput& in, const Match& m, const RectifiedStereo& stereo,
-               const DepthRefinementConfig& c, const TemporalStereoConfig& t, InvDepthRange range,
+               const DepthRefinementConfig& c, const TemporalCulls& t, InvDepthRange range,
                DepthPoint* out) {
   const Residual f(in, m, stereo, kPatchWidth, kPatchHeight);
   if (!f.ok()) return false;
@@ -235,7 +235,7 @@ bool RefineOne(const RefinementInput& in, const Match& m, const RectifiedStereo&
 std::vector<DepthPoint> RefineDepths(const RefinementInput& input, std::span<const Match> matches,
                                      const RectifiedStereo& stereo,
                                      const DepthRefinementConfig& refinement,
-                                     const TemporalStereoConfig& temporal, InvDepthRange range) {
+                                     TemporalCulls temporal, InvDepthRange range) {
   std::vector<DepthPoint> results(matches.size());
   std::vector<char> ok(matches.size(), 0);
   tbb::parallel_for(std::size_t{0}, matches.size(), [&](std::size_t i) {

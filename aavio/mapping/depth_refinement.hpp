@@ -24,12 +24,19 @@ struct RefinementInput {
   geometry::RigidTransform T_past_now;
 };
 
+/// Temporal estimates' own culling thresholds (temporal_stereo's keys of the same names); 0:
+/// refinement's.
+struct TemporalCulls {
+  double max_inv_depth_stddev = 0.0;
+  double residual_threshold = 0.0;
+};
+
 /// Culling by `refinement`'s thresholds (temporal estimates by `temporal`'s where it sets them)
 /// and by the inverse-depth `range`.
 std::vector<DepthPoint> RefineDepths(const RefinementInput& input, std::span<const Match> matches,
                                      const RectifiedStereo& stereo,
                                      const DepthRefinementConfig& refinement,
-                                     const TemporalStereoConfig& temporal, InvDepthRange range);
+                                     TemporalCulls temporal, InvDepthRange range);
 
 /// The robust scale of residuals by the Student-t IRLS loop (start s², iterate until the change
 /// is below 5 %), and the weights w_k = (ν + 1)/(ν + r_k²/s²).

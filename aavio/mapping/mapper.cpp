@@ -140,7 +140,7 @@ Expected<std::vector<DepthPoint>> Mapper::Bootstrap(const events::Observation& o
                     config_.inv_depth_range());
     std::vector<DepthPoint> points =
         RefineDepths({left, right, nullptr, nullptr, {}}, matches, stereo_,
-                     config_.depth_refinement, config_.temporal_stereo, config_.inv_depth_range());
+                     config_.depth_refinement, {}, config_.inv_depth_range());
     if (!bootstrap.Accepts(points.size(), samples.size()))
       return FailedPrecondition(bootstrap.Refusal("block-matching", points.size(), samples.size()));
     for (DepthPoint& p : points)
@@ -247,9 +247,10 @@ Status Mapper::Update(const PosedObservation& now, const PosedObservation* partn
   t = Clock::now();
   const RefinementInput refine{left, right, aa_now.empty() ? nullptr : &aa_now,
                                aa_past.empty() ? nullptr : &aa_past, T_past_now};
-  std::vector<DepthPoint> refined =
-      RefineDepths(refine, matches, stereo_, config_.depth_refinement, config_.temporal_stereo,
-                   config_.inv_depth_range());
+  std::vector<DepthPoint> refined = RefineDepths(
+      refine, matches, stereo_, config_.depth_refinement,
+      {config_.temporal_stereo.max_inv_depth_stddev, config_.temporal_stereo.residual_threshold},
+      config_.inv_depth_range());
   MoveOntoNewestEdge(temporal_group, temporal_snapped, &refined);
   report->refinement_ms = MsSince(t);
 

@@ -296,7 +296,7 @@ TEST(DepthRefinement, RecoversSubPixelDisparityAndItsUncertainty) {
                          stereo.InvDepthOfDisparity(20.0), 0.01, StereoKind::kStatic, false});
   const std::vector<DepthPoint> refined =
       RefineDepths({left, right, nullptr, nullptr, {}}, matches, stereo, config.depth_refinement,
-                   config.temporal_stereo, config.inv_depth_range());
+                   {}, config.inv_depth_range());
   ASSERT_GT(refined.size(), matches.size() * 9 / 10);
   for (const DepthPoint& p : refined) {
     EXPECT_NEAR(stereo.Disparity(p.rho), d, 0.03);  // bilinear interpolation bias only
@@ -315,7 +315,9 @@ TEST(DepthRefinement, TemporalEstimatesAreCulledByTheirOwnThresholds) {
   const cv::Mat none(120, 160, CV_32FC1, cv::Scalar(0.0f));
   auto refined = [&](const MappingConfig& config) {
     return RefineDepths({none, none, &scene.aa_now, &scene.aa_past, scene.T_past_now}, matches,
-                        scene.stereo, config.depth_refinement, config.temporal_stereo,
+                        scene.stereo, config.depth_refinement,
+                        {config.temporal_stereo.max_inv_depth_stddev,
+                         config.temporal_stereo.residual_threshold},
                         config.inv_depth_range())
         .size();
   };
