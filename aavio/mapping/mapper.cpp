@@ -154,6 +154,82 @@ Expected<std::vector<DepthPoint>> Mapper::Bootstrap(const events::Observation& o
                           config_.depth_refinement.student_t_nu, config_.inv_depth_range());
 }
 
+namespace {
+
+// A cycle's samples split by the η rule (docs/mapping.md): |g_u| / |g_v| < η is a near-horizontal
+// edge, matched by temporal stereo when it is on and there is a partner — at the sample's AA-map
+// position (`on_aa_map`), moved afterwards onto its snapped one — and skipped without a partner;
+// the others go to static stereo.
+struct SampleGroups {
+  std::vector<Eigen::Vector2f> static_group, temporal_group, temporal_snapped;
+  std::vector<char> static_horizontal;  // per static sample: on a near-horizontal edge
+};
+
+SampleGroups SplitByEta(const events::Observation& obs,
+                        const std::vector<events::EdgeSample>& samples,
+                        const std::vector<events::EdgeSample>& on_aa_map, double eta, bool temporal,
+                        bool has_partner) {
+  SampleGroups g;
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    const events::EdgeSample& s = samples[i];
+    const int u = static_cast<int>(std::lround(s.u)), v = static_cast<int>(std::lround(s.v));
+    double gu = std::abs(obs.grad_u.at<float>(v, u)), gv = std::abs(obs.grad_v.at<float>(v, u));
+    if (gu <= 0.01) gu = 0.1;
+    if (gv <= 0.01) gv = 0.1;
+    const bool horizontal = gu / gv < eta;
+    if (horizontal && temporal && has_partner) {
+      const events::EdgeSample& m = on_aa_map[i];
+      g.temporal_group.emplace_back(m.u, m.v);
+      g.temporal_snapped.emplace_back(s.u, s.v);
+    }
+    if (!horizontal || !temporal) {
+      g.static_group.emplace_back(s.u, s.v);
+      g.static_horizontal.push_back(horizontal ? 1 : 0);
+    }
+  }
+  return g;
+}
+
+// Marks the static matches that sit on near-horizontal edges (for the evaluation split).
+void MarkNearHorizontal(const SampleGroups& g, std::vector<Match>* matches) {
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < g.static_group.size() && k < matches->size(); ++i) {
+    if (g.static_group[i].x() == (*matches)[k].u && g.static_group[i].y() == (*matches)[k].v)
+      (*matches)[k++].near_horizontal = g.static_horizontal[i] != 0;
+  }
+}
+
+// The AA maps temporal stereo matched on, for refinement.
+struct TemporalViews {
+  cv::Mat aa_now, aa_past;
+  geometry::RigidTransform T_past_now;
+};
+
+// Temporal stereo on `group`: now's AA map against the partner's (and the check partner's).
+std::vector<Match> MatchTemporalGroup(const PosedObservation& now, const PosedObservation& partner,
+                                      const PosedObservation* check,
+                                      const std::vector<Eigen::Vector2f>& group,
+                                      const RectifiedStereo& stereo, const MappingConfig& config,
+                                      TemporalViews* views, TemporalMatchStats* stats) {
+  const bool smooth_aa = config.temporal_stereo.smooth_aa;
+  views->aa_now = ToFloat(now.obs->aa_map, smooth_aa);
+  views->aa_past = ToFloat(partner.obs->aa_map, smooth_aa);
+  views->T_past_now = partner.T_world_obs.Inverse() * now.T_world_obs;
+  TemporalStereoInput input{views->aa_now, views->aa_past, views->T_past_now};
+  cv::Mat aa_check;
+  geometry::RigidTransform T_check_now;
+  if (check != nullptr) {
+    aa_check = ToFloat(check->obs->aa_map, smooth_aa);
+    T_check_now = check->T_world_obs.Inverse() * now.T_world_obs;
+    input.aa_check = &aa_check;
+    input.T_check_now = &T_check_now;
+  }
+  return MatchTemporal(input, group, stereo, config.temporal_stereo,
+                       config.static_stereo.zncc_threshold, config.inv_depth_range(), stats);
+}
+
+}  // namespace
+
 Status Mapper::Update(const PosedObservation& now, const PosedObservation* partner,
                       MappingCycleReport* report, const PosedObservation* check) {
   const auto start = Clock::now();
@@ -162,8 +238,7 @@ Status Mapper::Update(const PosedObservation& now, const PosedObservation* partn
   std::vector<events::EdgeSample> samples =
       UsableSamples(obs, stereo_.width, stereo_.height, config_.max_points);
   // Temporal stereo compares AA maps, so it matches each sample where the AA map has it, before
-  // the snap to the time surface's newest edge, and the point then moves onto the snapped
-  // position (MoveOntoNewestEdge).
+  // the snap to the time surface's newest edge (MoveOntoNewestEdge moves it afterwards).
   const std::vector<events::EdgeSample> on_aa_map = samples;
   if (config_.snap_to_edge_px > 0.0)
     SnapToNewestEdge(obs.negative_ts_left, obs.grad_u, obs.grad_v, config_.snap_to_edge_px,
@@ -173,71 +248,28 @@ Status Mapper::Update(const PosedObservation& now, const PosedObservation* partn
     report->total_ms = MsSince(start);
     return Status::Ok();  // too little to map this cycle; the old map stays published
   }
-
-  // η split (docs/mapping.md): |g_u| / |g_v| < η → near-horizontal edge → temporal stereo.
-  const bool temporal = config_.temporal_stereo.enabled;
   report->has_partner = partner != nullptr;
-  std::vector<Eigen::Vector2f> static_group, temporal_group, temporal_snapped;
-  std::vector<char> static_horizontal;
-  for (std::size_t i = 0; i < samples.size(); ++i) {
-    const events::EdgeSample& s = samples[i];
-    const int u = static_cast<int>(std::lround(s.u)), v = static_cast<int>(std::lround(s.v));
-    double gu = std::abs(obs.grad_u.at<float>(v, u)), gv = std::abs(obs.grad_v.at<float>(v, u));
-    if (gu <= 0.01) gu = 0.1;
-    if (gv <= 0.01) gv = 0.1;
-    const bool horizontal = gu / gv < config_.eta;
-    if (horizontal && temporal && partner != nullptr) {
-      const events::EdgeSample& m = on_aa_map[i];
-      temporal_group.emplace_back(m.u, m.v);
-      temporal_snapped.emplace_back(s.u, s.v);
-    }
-    if (!horizontal || !temporal) {
-      static_group.emplace_back(s.u, s.v);
-      static_horizontal.push_back(horizontal ? 1 : 0);
-    }
-  }
-  report->static_candidates = static_cast<int>(static_group.size());
-  report->temporal_candidates = static_cast<int>(temporal_group.size());
+  const SampleGroups groups = SplitByEta(obs, samples, on_aa_map, config_.eta,
+                                         config_.temporal_stereo.enabled, partner != nullptr);
+  report->static_candidates = static_cast<int>(groups.static_group.size());
+  report->temporal_candidates = static_cast<int>(groups.temporal_group.size());
 
   // Matching.
   auto t = Clock::now();
   const bool smooth = config_.static_stereo.smooth_time_surface;
   const cv::Mat left = ToFloat(obs.ts_left, smooth), right = ToFloat(obs.ts_right, smooth);
-  std::vector<Match> matches = MatchStatic({left, right, valid_mask_}, static_group, stereo_,
+  std::vector<Match> matches = MatchStatic({left, right, valid_mask_}, groups.static_group, stereo_,
                                            config_.static_stereo, config_.inv_depth_range());
-  // Remember which static matches sit on near-horizontal edges (for the evaluation split).
-  {
-    std::size_t k = 0;
-    for (std::size_t i = 0; i < static_group.size() && k < matches.size(); ++i) {
-      if (static_group[i].x() == matches[k].u && static_group[i].y() == matches[k].v) {
-        matches[k++].near_horizontal = static_horizontal[i] != 0;
-      }
-    }
-  }
+  MarkNearHorizontal(groups, &matches);
   if (config_.static_stereo.out_of_view_radius_px > 0 && local_map_) {
     DropOutOfViewMatches(*local_map_, now.T_world_obs, stereo_, kPatchWidth / 2,
                          config_.static_stereo.out_of_view_radius_px, &matches);
   }
   report->static_matches = static_cast<int>(matches.size());
-  cv::Mat aa_now, aa_past;
-  geometry::RigidTransform T_past_now;
-  if (!temporal_group.empty()) {
-    const bool smooth_aa = config_.temporal_stereo.smooth_aa;
-    aa_now = ToFloat(obs.aa_map, smooth_aa);
-    aa_past = ToFloat(partner->obs->aa_map, smooth_aa);
-    T_past_now = partner->T_world_obs.Inverse() * now.T_world_obs;
-    TemporalStereoInput input{aa_now, aa_past, T_past_now};
-    cv::Mat aa_check;
-    geometry::RigidTransform T_check_now;
-    if (check != nullptr) {
-      aa_check = ToFloat(check->obs->aa_map, smooth_aa);
-      T_check_now = check->T_world_obs.Inverse() * now.T_world_obs;
-      input.aa_check = &aa_check;
-      input.T_check_now = &T_check_now;
-    }
-    const std::vector<Match> temporal_matches = MatchTemporal(
-        input, temporal_group, stereo_, config_.temporal_stereo,
-        config_.static_stereo.zncc_threshold, config_.inv_depth_range(), &report->temporal);
+  TemporalViews views;
+  if (!groups.temporal_group.empty()) {
+    const std::vector<Match> temporal_matches = MatchTemporalGroup(
+        now, *partner, check, groups.temporal_group, stereo_, config_, &views, &report->temporal);
     report->temporal_matches = static_cast<int>(temporal_matches.size());
     matches.insert(matches.end(), temporal_matches.begin(), temporal_matches.end());
   }
@@ -245,26 +277,33 @@ Status Mapper::Update(const PosedObservation& now, const PosedObservation* partn
 
   // Refinement and culling.
   t = Clock::now();
-  const RefinementInput refine{left, right, aa_now.empty() ? nullptr : &aa_now,
-                               aa_past.empty() ? nullptr : &aa_past, T_past_now};
+  const RefinementInput refine{left, right, views.aa_now.empty() ? nullptr : &views.aa_now,
+                               views.aa_past.empty() ? nullptr : &views.aa_past, views.T_past_now};
   std::vector<DepthPoint> refined = RefineDepths(
       refine, matches, stereo_, config_.depth_refinement,
       {config_.temporal_stereo.max_inv_depth_stddev, config_.temporal_stereo.residual_threshold},
       config_.inv_depth_range());
-  MoveOntoNewestEdge(temporal_group, temporal_snapped, &refined);
+  MoveOntoNewestEdge(groups.temporal_group, groups.temporal_snapped, &refined);
   report->refinement_ms = MsSince(t);
 
-  // Fusion: one batch per kind, then a new map at the current pose.
-  t = Clock::now();
-  DepthBatch static_batch{obs.t_ns, now.T_world_obs, {}},
-      temporal_batch{obs.t_ns, now.T_world_obs, {}};
+  FuseCycle(now, refined, report);
+  report->total_ms = MsSince(start);
+  return Status::Ok();
+}
+
+void Mapper::FuseCycle(const PosedObservation& now, const std::vector<DepthPoint>& refined,
+                       MappingCycleReport* report) {
+  // One batch per kind, then a new map at the current pose.
+  const auto t = Clock::now();
+  const TimeNs t_ns = now.obs->t_ns;
+  DepthBatch static_batch{t_ns, now.T_world_obs, {}}, temporal_batch{t_ns, now.T_world_obs, {}};
   for (const DepthPoint& p : refined)
     (p.kind == StereoKind::kStatic ? static_batch : temporal_batch).points.push_back(p);
   report->static_points = static_cast<int>(static_batch.points.size());
   report->temporal_points = static_cast<int>(temporal_batch.points.size());
   fusion_.Add(StereoKind::kStatic, std::move(static_batch));
   if (!temporal_batch.points.empty()) fusion_.Add(StereoKind::kTemporal, std::move(temporal_batch));
-  const DepthMap map = fusion_.Fuse(now.T_world_obs, obs.t_ns);
+  const DepthMap map = fusion_.Fuse(now.T_world_obs, t_ns);
   report->map_points = static_cast<int>(map.size());
   report->fused_cycles = static_cast<int>(fusion_.static_batches());
   // Depth outputs take cleaned maps only; tracking gets what the reference codes publish, or
@@ -274,8 +313,6 @@ Status Mapper::Update(const PosedObservation& now, const PosedObservation* partn
     report->published = true;
   }
   report->fusion_ms = MsSince(t);
-  report->total_ms = MsSince(start);
-  return Status::Ok();
 }
 
 }  // namespace aavio::mapping

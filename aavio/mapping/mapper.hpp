@@ -79,6 +79,10 @@ class Mapper {
   /// The first map's points, or why there are too few.
   Expected<std::vector<DepthPoint>> Bootstrap(const events::Observation& obs) const;
   void Publish(const DepthMap& map, bool confirmed);
+  /// A cycle's refined points into the fusion FIFO (a batch per kind), a new map fused at the
+  /// current pose, and published if the FIFO says so.
+  void FuseCycle(const PosedObservation& now, const std::vector<DepthPoint>& refined,
+                 MappingCycleReport* report);
 
   RectifiedStereo stereo_;
   cv::Mat valid_mask_;
