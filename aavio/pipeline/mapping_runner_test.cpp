@@ -98,12 +98,15 @@ TEST_F(MappingRunnerTest, RealTimeSkipsACycleDueWhileOneRuns) {
   // Handed over at the first tick after it is done (ticks go on until then).
   double waited_ms = 0.0;
   std::optional<MappingRunner::Cycle> cycle;
-  for (TimeNs t = kCycleNs + 2; !cycle; t += kNsPerMs) {
+  // (Up to 10 s of wall time: a cycle that never finishes fails here rather than hangs.)
+  TimeNs t = kCycleNs + 2;
+  for (int polls = 0; !cycle && polls < 10000; ++polls, t += kNsPerMs) {
     Expected<std::optional<MappingRunner::Cycle>> collected = runner->Collect(t, &waited_ms);
     ASSERT_TRUE(collected.ok());
     cycle = std::move(*collected);
     if (!cycle) std::this_thread::sleep_for(std::chrono::milliseconds(1));
   }
+  ASSERT_TRUE(cycle.has_value()) << "the cycle was not handed over within 10 s";
   EXPECT_GT(cycle->report.static_points, 500);
 }
 
