@@ -8,12 +8,11 @@
 
 #include <opencv2/core.hpp>
 
+#include "aavio/config/config_sources.hpp"
 #include "aavio/events/representation_builder.hpp"
 #include "aavio/geometry/rectification.hpp"
-#include "aavio/io/presets.hpp"
 #include "aavio/mapping/mapper.hpp"
 #include "aavio/pipeline/odometry_config.hpp"
-#include "aavio/pipeline/sensor_settings.hpp"
 #include "aavio/sim/event_simulation.hpp"
 
 namespace {
@@ -34,14 +33,10 @@ const Workload& GetWorkload() {
     request.preset = "dsec";
     request.duration_s = 8.0;
     const sim::SimulationWorld world = *sim::BuildSimulationWorld(request);
-    // As `aavio run` configures it: the sensor's settings, then the driving preset.
-    const std::vector<ConfigEntry> preset = *io::PresetEntries("driving");
-    pipeline::OdometryConfig scene;
-    (void)ApplyConfigEntries(preset, &scene);
-    (void)ApplyConfigEntries(pipeline::ToConfigEntries(pipeline::DeriveSensorSettings(
-                                 pipeline::SensorFacts::Of(world.rig), scene)),
-                             &w.config);
-    (void)ApplyConfigEntries(preset, &w.config);
+    // As `aavio run` configures it: the driving preset, then the sensor's rules.
+    const config::ConfigSources sources{.preset = "driving",
+                                        .sensor = config::SensorFacts::Of(world.rig)};
+    w.config = *config::ResolveOdometryConfig(sources);
     const geometry::StereoRectification rectification =
         geometry::BuildStereoRectification(world.rig);
     w.stereo = mapping::RectifiedStereo::FromRig(world.rig);

@@ -2,7 +2,7 @@
 # `--config NAME` work wherever the binary is. Called as:
 #   cmake -DOUT=file.cpp -DIN="a.yaml|b.yaml" -DOVERLAYS="c.yaml" -P EmbedPresets.cmake
 set(body "// Generated from configs/*.yaml by cmake/EmbedPresets.cmake. Do not edit.\n")
-string(APPEND body "#include \"aavio/io/presets.hpp\"\n\nnamespace aavio::io {\n\n")
+string(APPEND body "#include \"aavio/config/presets.hpp\"\n\nnamespace aavio::config {\n\n")
 string(APPEND body "const std::vector<EmbeddedPreset>& EmbeddedPresets() {\n")
 string(APPEND body "  static const std::vector<EmbeddedPreset> presets = {\n")
 function(embed list overlay)
@@ -16,5 +16,5 @@ function(embed list overlay)
 endfunction()
 embed("${IN}" false)
 embed("${OVERLAYS}" true)
-string(APPEND body "  };\n  return presets;\n}\n\n}  // namespace aavio::io\n")
+string(APPEND body "  };\n  return presets;\n}\n\n}  // namespace aavio::config\n")
 file(WRITE "${OUT}" "${body}")

@@ -2,20 +2,21 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <set>
 
 #include "aavio/common/format.hpp"
+#include "aavio/config/presets.hpp"
 #include "aavio/io/config_yaml.hpp"
-#include "aavio/io/presets.hpp"
 
 namespace aavio::config {
 
 namespace {
 
-// A configuration file's entries: those of its small_sensor section apply (without that prefix)
+// A configuration file's entries: those of its small_sensor section count (without that prefix)
 // only on a small sensor, after the others.
-Status ApplyFileEntries(std::vector<ConfigEntry> entries, const ConfigSources& sources,
-                        pipeline::OdometryConfig* config) {
-  const std::string prefix = std::string(pipeline::kSmallSensorSection) + ".";
+void AddFileEntries(std::vector<ConfigEntry> entries, const ConfigSources& sources,
+                    std::vector<ConfigEntry>* out) {
+  const std::string prefix = std::string(kSmallSensorSection) + ".";
   std::vector<ConfigEntry> small_sensor;
   std::erase_if(entries, [&](ConfigEntry& e) {
     if (!e.key.starts_with(prefix)) return false;
@@ -23,58 +24,60 @@ Status ApplyFileEntries(std::vector<ConfigEntry> entries, const ConfigSources& s
     small_sensor.push_back(std::move(e));
     return true;
   });
-  AAVIO_RETURN_IF_ERROR(ApplyConfigEntries(entries, config));
-  if (!sources.sensor || !sources.sensor->small()) return Status::Ok();
-  return ApplyConfigEntries(small_sensor, config);
+  out->insert(out->end(), entries.begin(), entries.end());
+  if (sources.sensor && sources.sensor->small())
+    out->insert(out->end(), small_sensor.begin(), small_sensor.end());
 }
 
 // A shipped overlay by its name.
-Status ApplyOverlay(const std::string& name, const ConfigSources& sources,
-                    pipeline::OdometryConfig* config) {
-  Expected<std::vector<ConfigEntry>> entries = io::OverlayEntries(name);
+Status AddOverlay(const std::string& name, const ConfigSources& sources,
+                  std::vector<ConfigEntry>* out) {
+  Expected<std::vector<ConfigEntry>> entries = OverlayEntries(name);
   if (!entries) return entries.status();
-  return ApplyFileEntries(std::move(*entries), sources, config);
+  AddFileEntries(std::move(*entries), sources, out);
+  return Status::Ok();
 }
 
-// Applies the preset, the files, the overlays and the --set overrides onto `config`.
-Status ApplySources(const ConfigSources& sources, pipeline::OdometryConfig* config) {
+// The entries of the preset, the files, the overlays and the --set overrides, in that order
+// (later wins).
+Expected<std::vector<ConfigEntry>> EntriesOf(const ConfigSources& sources) {
+  std::vector<ConfigEntry> out;
   if (!sources.preset.empty()) {
-    Expected<std::vector<ConfigEntry>> entries = io::PresetEntries(sources.preset);
+    Expected<std::vector<ConfigEntry>> entries = PresetEntries(sources.preset);
     if (!entries) return entries.status();
-    AAVIO_RETURN_IF_ERROR(ApplyFileEntries(std::move(*entries), sources, config));
+    AddFileEntries(std::move(*entries), sources, &out);
   }
-  const std::vector<std::string> overlays = io::OverlayNames();
+  const std::vector<std::string> overlays = OverlayNames();
   for (const std::string& file : sources.files) {
     // A shipped overlay's name, unless a file of that name is here (a folder of that name, such
     // as a run's output, is not a configuration file).
     const bool overlay = std::find(overlays.begin(), overlays.end(), file) != overlays.end() &&
                          !std::filesystem::is_regular_file(file);
     if (overlay) {
-      AAVIO_RETURN_IF_ERROR(ApplyOverlay(file, sources, config));
+      AAVIO_RETURN_IF_ERROR(AddOverlay(file, sources, &out));
       continue;
     }
     Expected<std::vector<ConfigEntry>> entries = io::ReadConfigYaml(file);
     if (!entries) return entries.status();
-    AAVIO_RETURN_IF_ERROR(ApplyFileEntries(std::move(*entries), sources, config));
+    AddFileEntries(std::move(*entries), sources, &out);
   }
   for (const std::string& name : sources.overlays)
-    AAVIO_RETURN_IF_ERROR(ApplyOverlay(name, sources, config));
-  std::vector<ConfigEntry> overrides;
+    AAVIO_RETURN_IF_ERROR(AddOverlay(name, sources, &out));
   for (const std::string& text : sources.overrides) {
     Expected<ConfigEntry> entry = ParseKeyValueOverride(text);
     if (!entry) return entry.status();
-    overrides.push_back(*entry);
+    out.push_back(std::move(*entry));
   }
-  return ApplyConfigEntries(overrides, config);
+  return out;
 }
 
 }  // namespace
 
 std::string ConfigureForRig(const geometry::StereoRig& rig, ConfigSources* sources,
                             const std::optional<pipeline::SceneDepth>& scene) {
-  sources->sensor = pipeline::SensorFacts::Of(rig);
+  sources->sensor = SensorFacts::Of(rig);
   if (!sources->preset.empty()) return "";
-  const pipeline::PresetSuggestion suggestion = pipeline::SuggestPreset(*sources->sensor);
+  const PresetSuggestion suggestion = SuggestPreset(*sources->sensor);
   sources->preset = suggestion.name;
   if (!scene) return suggestion.reason;
   const std::string seen = StrFormat("median %.1f m of %zu edges %.1f s into the data",
@@ -84,10 +87,10 @@ std::string ConfigureForRig(const geometry::StereoRig& rig, ConfigSources* sourc
   auto range_of = [](const char* preset, double* near_m, double* far_m) {
     ConfigSources named;
     named.preset = preset;
-    pipeline::OdometryConfig config;
-    if (!ApplySources(named, &config).ok()) return false;
-    *near_m = 1.0 / config.mapping.inv_depth_max;
-    *far_m = 1.0 / config.mapping.inv_depth_min;
+    Expected<pipeline::OdometryConfig> config = ResolveOdometryConfig(named);
+    if (!config) return false;
+    *near_m = 1.0 / config->mapping.inv_depth_max;
+    *far_m = 1.0 / config->mapping.inv_depth_min;
     return true;
   };
   double indoor_near = 0, indoor_far = 0, driving_near = 0, driving_far = 0;
@@ -106,23 +109,31 @@ std::string ConfigureForRig(const geometry::StereoRig& rig, ConfigSources* sourc
   return StrFormat("baseline %.2f m is a car's, but ", sources->sensor->baseline_m) + shares;
 }
 
-Expected<std::vector<pipeline::SensorSetting>> SensorSettingsOf(const ConfigSources& sources) {
-  if (!sources.sensor) return std::vector<pipeline::SensorSetting>{};
-  // The scene the later sources make (its depth range): defaults + sources, without the sensor.
-  pipeline::OdometryConfig scene;
-  AAVIO_RETURN_IF_ERROR(ApplySources(sources, &scene));
-  return pipeline::DeriveSensorSettings(*sources.sensor, scene);
+Expected<ResolvedConfig> Resolve(const ConfigSources& sources) {
+  Expected<std::vector<ConfigEntry>> entries = EntriesOf(sources);
+  if (!entries) return entries.status();
+  ResolvedConfig resolved;
+  AAVIO_RETURN_IF_ERROR(ApplyConfigEntries(*entries, &resolved.config));
+  std::set<std::string> set_by_sources;
+  for (const ConfigEntry& e : *entries) {
+    set_by_sources.insert(e.key);
+    resolved.origin[e.key] = e.value.origin;
+  }
+  if (sources.sensor) {
+    resolved.sensor_rulings = ApplySensorRules(*sources.sensor, set_by_sources, &resolved.config);
+    for (const SensorRuling& r : resolved.sensor_rulings) {
+      if (r.applied) resolved.origin[r.key] = "the sensor's rule (" + r.rule + ")";
+    }
+  }
+  Status status = resolved.config.Validate();
+  if (!status.ok()) return InvalidArgument("invalid configuration: " + status.message());
+  return resolved;
 }
 
 Expected<pipeline::OdometryConfig> ResolveOdometryConfig(const ConfigSources& sources) {
-  Expected<std::vector<pipeline::SensorSetting>> derived = SensorSettingsOf(sources);
-  if (!derived) return derived.status();
-  pipeline::OdometryConfig config;
-  AAVIO_RETURN_IF_ERROR(ApplyConfigEntries(pipeline::ToConfigEntries(*derived), &config));
-  AAVIO_RETURN_IF_ERROR(ApplySources(sources, &config));
-  Status status = config.Validate();
-  if (!status.ok()) return InvalidArgument("invalid configuration: " + status.message());
-  return config;
+  Expected<ResolvedConfig> resolved = Resolve(sources);
+  if (!resolved) return resolved.status();
+  return std::move(resolved->config);
 }
 
 std::string DescribeSources(const ConfigSources& sources) {

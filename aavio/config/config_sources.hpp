@@ -1,22 +1,23 @@
 #pragma once
-/// Builds the effective OdometryConfig from its sources, in this order (later wins):
-/// defaults → the sensor's settings (when the rig is known; pipeline/sensor_settings.hpp) →
-/// a preset (configs/*.yaml, embedded) → YAML files (each, in order; a shipped overlay's name
-/// unless a file of that name exists) → overlays (`run --esvo`) → key=value overrides. The CLI's
-/// --preset, --config and --set fill these; a program does the same:
+/// Builds the effective OdometryConfig from its sources: on the defaults, a preset
+/// (configs/*.yaml, embedded) → YAML files (each, in order; a shipped overlay's name unless a
+/// file of that name exists) → overlays (`run --esvo`) → key=value overrides, later winning;
+/// then, once, the sensor's rules (when the rig is known; sensor_rules.hpp) on every field none
+/// of those set. The CLI's --preset, --config and --set fill these; a program does the same:
 ///
 ///   config::ConfigSources sources;                // sources.preset = "indoor" to choose
 ///   config::ConfigureForRig(rig, &sources);       // the sensor's settings, a suggested preset
 ///   Expected<pipeline::OdometryConfig> c = config::ResolveOdometryConfig(sources);
 
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "aavio/common/status.hpp"
+#include "aavio/config/sensor_rules.hpp"
 #include "aavio/pipeline/odometry_config.hpp"
 #include "aavio/pipeline/scene_depth_probe.hpp"
-#include "aavio/pipeline/sensor_settings.hpp"
 
 namespace aavio::config {
 
@@ -25,7 +26,7 @@ struct ConfigSources {
   std::vector<std::string> files;
   std::vector<std::string> overlays;  ///< shipped overlays by name, always the embedded ones
   std::vector<std::string> overrides;
-  std::optional<pipeline::SensorFacts> sensor;  ///< the rig the configuration is for, if known
+  std::optional<SensorFacts> sensor;  ///< the rig the configuration is for, if known
 };
 
 /// Makes `sources` configure for `rig`: its sensor's settings and, when no preset is named, the
@@ -36,11 +37,19 @@ struct ConfigSources {
 std::string ConfigureForRig(const geometry::StereoRig& rig, ConfigSources* sources,
                             const std::optional<pipeline::SceneDepth>& scene = {});
 
-/// The settings derived from `sources.sensor` (none without one), for the scene the other
-/// sources make.
-Expected<std::vector<pipeline::SensorSetting>> SensorSettingsOf(const ConfigSources& sources);
+/// The configuration and where each value came from.
+struct ResolvedConfig {
+  pipeline::OdometryConfig config;
+  /// Key → its value's origin ("preset indoor:12", "my.yaml:3", "--set", "the sensor's rule
+  /// (...)"); a key not listed has its default.
+  std::map<std::string, std::string> origin;
+  /// Every sensor rule's value, also those a source overrode (SensorRuling::applied).
+  std::vector<SensorRuling> sensor_rulings;
+};
 
-/// Applies the sources and validates the result.
+/// Applies the sources, then the sensor's rules, and validates the result.
+Expected<ResolvedConfig> Resolve(const ConfigSources& sources);
+/// Resolve's configuration alone.
 Expected<pipeline::OdometryConfig> ResolveOdometryConfig(const ConfigSources& sources);
 
 /// A description of the sources for the header of a written config ("preset driving + my.yaml",

@@ -3,8 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <map>
+#include <set>
 #include <utility>
 
+#include "aavio/config/presets.hpp"
 #include "aavio/sim/presets.hpp"
 #include "tests/test_utils.hpp"
 
@@ -149,6 +152,77 @@ TEST(ConfigSources, BadSourcesAreErrorsThatSayWhatToDo) {
   EXPECT_NE(c.status().message().find("/nonexistent/my.yaml"), std::string::npos)
       << c.status().message();
 }
+
+// The reference overlays — ESVO-like (`aavio run --esvo`) and the paper's method as published
+// (`--config paper`) — set every aavio addition — each key whose description marks it "(aavio)"
+// — to the reference codes' behaviour, which is the addition's default (off), except for the
+// few on by default: so no preset's addition survives in the baselines.
+// Every value says where it came from: a source's file and line or --set, a sensor rule, or the
+// default (no origin); a rule a source overrode is listed as not applied.
+TEST(ConfigSources, SayWhereEachValueCameFrom) {
+  ConfigSources sources{.preset = "indoor", .overrides = {"edge_sampling.num_points=2400"}};
+  ConfigureForRig(Rig("rpg"), &sources);
+  Expected<ResolvedConfig> resolved = Resolve(sources);
+  ASSERT_TRUE(resolved.ok()) << resolved.status().message();
+  EXPECT_EQ(resolved->config.edge_sampling.num_points, 2400);
+  EXPECT_EQ(resolved->origin.at("edge_sampling.num_points"), "--set edge_sampling.num_points=2400");
+  EXPECT_EQ(resolved->origin.at("mapping.inv_depth_min"), "preset indoor:11");
+  EXPECT_NE(resolved->origin.at("edge_sampling.grid_cols").find("the sensor's rule (~80 px"),
+            std::string::npos);
+  EXPECT_FALSE(resolved->origin.contains("mapping.eta"));
+  int overridden = 0;
+  for (const SensorRuling& r : resolved->sensor_rulings) {
+    EXPECT_EQ(r.applied, r.key != "edge_sampling.num_points") << r.key;
+    overridden += r.applied ? 0 : 1;
+  }
+  EXPECT_EQ(overridden, 1);
+}
+
+class ReferenceOverlay : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(ReferenceOverlay, TurnsOffEveryAavioAddition) {
+  Expected<std::vector<ConfigEntry>> overlay = OverlayEntries(GetParam());
+  ASSERT_TRUE(overlay.ok()) << overlay.status().message();
+  // Its small_sensor section (sample budgets on small sensors) holds no addition: left out here.
+  std::erase_if(*overlay, [](const ConfigEntry& e) {
+    return e.key.starts_with(std::string(kSmallSensorSection) + ".");
+  });
+  std::set<std::string> set_by_overlay;
+  for (const ConfigEntry& e : *overlay)
+    set_by_overlay.insert(e.key);
+  pipeline::OdometryConfig defaults;
+  const auto default_index = BuildFieldIndex(defaults);
+  int additions = 0;
+  // Each preset on its kind of sensor (the sensor's settings include aavio additions too).
+  const std::vector<std::pair<const char*, SensorFacts>> cases = {
+      {"indoor", {240, 180, 157.0, 0.148}}, {"driving", {640, 480, 536.0, 0.6}}};
+  for (const auto& [preset, sensor] : cases) {
+    SCOPED_TRACE(preset);
+    const ConfigSources sources{.preset = preset, .overlays = {GetParam()}, .sensor = sensor};
+    Expected<pipeline::OdometryConfig> config = ResolveOdometryConfig(sources);
+    ASSERT_TRUE(config.ok()) << config.status().message();
+    const auto index = BuildFieldIndex(*config);
+    additions = 0;
+    for (const std::string& key : default_index.order) {
+      if (default_index.fields.at(key).doc.find("(aavio)") == std::string::npos) continue;
+      ++additions;
+      EXPECT_TRUE(set_by_overlay.count(key)) << key << " is an aavio addition the overlay leaves";
+      // The additions on by default, with the reference codes' value.
+      const std::map<std::string, std::string> on_by_default = {
+          {"mapping.snap_to_edge_px", "0.0"},
+          {"mapping.bootstrap.min_coverage", "0.0"},
+          {"mapping.fusion.full_at_max_frames", "false"},
+          {"time_surface.adaptive_decay", "false"}};
+      const auto on = on_by_default.find(key);
+      const std::string expected =
+          on != on_by_default.end() ? on->second : default_index.fields.at(key).get().scalar;
+      EXPECT_EQ(index.fields.at(key).get().scalar, expected) << key;
+    }
+  }
+  EXPECT_GE(additions, 15);
+}
+
+INSTANTIATE_TEST_SUITE_P(ConfigSources, ReferenceOverlay, ::testing::Values("esvo", "paper"));
 
 }  // namespace
 }  // namespace aavio::config

@@ -1,7 +1,7 @@
 #pragma once
 /// Configuration of mapping (docs/mapping.md). Defaults are the paper's / ICRA code's
 /// DSEC values; configs/indoor.yaml and configs/driving.yaml are the scene presets, and
-/// pipeline/sensor_settings.hpp derives the camera-dependent ones.
+/// config/sensor_rules.hpp derives the camera-dependent ones.
 
 #include <array>
 #include <cstddef>

@@ -2,12 +2,6 @@
 
 #include <gtest/gtest.h>
 
-#include <map>
-#include <set>
-
-#include "aavio/io/presets.hpp"
-#include "aavio/pipeline/sensor_settings.hpp"
-
 namespace aavio::pipeline {
 namespace {
 
@@ -42,63 +36,6 @@ TEST(OdometryConfig, EveryKeyHasAOneLineDescription) {
     EXPECT_LE(doc.size(), 100u) << key;
   }
 }
-
-// The reference overlays — ESVO-like (`aavio run --esvo`) and the paper's method as published
-// (`--config paper`) — set every aavio addition — each key whose description marks it "(aavio)"
-// — to the reference codes' behaviour, which is the addition's default (off), except for the
-// few on by default: so no preset's addition survives in the baselines.
-class ReferenceOverlay : public ::testing::TestWithParam<const char*> {};
-
-TEST_P(ReferenceOverlay, TurnsOffEveryAavioAddition) {
-  Expected<std::vector<ConfigEntry>> overlay = io::OverlayEntries(GetParam());
-  ASSERT_TRUE(overlay.ok()) << overlay.status().message();
-  // Its small_sensor section (sample budgets on small sensors, config::ResolveOdometryConfig
-  // applies it) holds no addition: left out here.
-  std::erase_if(*overlay, [](const ConfigEntry& e) {
-    return e.key.starts_with(std::string(kSmallSensorSection) + ".");
-  });
-  std::set<std::string> set_by_overlay;
-  for (const ConfigEntry& e : *overlay)
-    set_by_overlay.insert(e.key);
-  OdometryConfig defaults;
-  const auto default_index = BuildFieldIndex(defaults);
-  int additions = 0;
-  // Each preset on its kind of sensor (the sensor's settings include aavio additions too).
-  const std::vector<std::pair<const char*, SensorFacts>> cases = {
-      {"indoor", {240, 180, 157.0, 0.148}}, {"driving", {640, 480, 536.0, 0.6}}};
-  for (const auto& [preset, sensor] : cases) {
-    SCOPED_TRACE(preset);
-    OdometryConfig config;
-    Expected<std::vector<ConfigEntry>> entries = io::PresetEntries(preset);
-    ASSERT_TRUE(entries.ok());
-    OdometryConfig scene;
-    ASSERT_TRUE(ApplyConfigEntries(*entries, &scene).ok());
-    ASSERT_TRUE(
-        ApplyConfigEntries(ToConfigEntries(DeriveSensorSettings(sensor, scene)), &config).ok());
-    ASSERT_TRUE(ApplyConfigEntries(*entries, &config).ok());
-    ASSERT_TRUE(ApplyConfigEntries(*overlay, &config).ok());
-    const auto index = BuildFieldIndex(config);
-    additions = 0;
-    for (const std::string& key : default_index.order) {
-      if (default_index.fields.at(key).doc.find("(aavio)") == std::string::npos) continue;
-      ++additions;
-      EXPECT_TRUE(set_by_overlay.count(key)) << key << " is an aavio addition the overlay leaves";
-      // The additions on by default, with the reference codes' value.
-      const std::map<std::string, std::string> on_by_default = {
-          {"mapping.snap_to_edge_px", "0.0"},
-          {"mapping.bootstrap.min_coverage", "0.0"},
-          {"mapping.fusion.full_at_max_frames", "false"},
-          {"time_surface.adaptive_decay", "false"}};
-      const auto on = on_by_default.find(key);
-      const std::string expected =
-          on != on_by_default.end() ? on->second : default_index.fields.at(key).get().scalar;
-      EXPECT_EQ(index.fields.at(key).get().scalar, expected) << key;
-    }
-  }
-  EXPECT_GE(additions, 15);
-}
-
-INSTANTIATE_TEST_SUITE_P(OdometryConfig, ReferenceOverlay, ::testing::Values("esvo", "paper"));
 
 TEST(OdometryConfig, ValidationNamesTheFieldAndTheRule) {
   struct Case {

@@ -255,7 +255,8 @@ TEST(Cli, ConfigForASequenceDerivesTheSensorsSettings) {
   // 160×120: the paper's 8 blocks across, square ones down; 4 × 3 sampling blocks at least.
   EXPECT_NE(r.out.find("#   adaptive_accumulation.grid_rows"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("  grid_rows: 6\n"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("[a later source sets 2400]"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("[--set edge_sampling.num_points=2400 sets 2400]"), std::string::npos)
+      << r.out;
   EXPECT_NE(r.out.find("  num_points: 2400\n"), std::string::npos) << r.out;
   // A named preset is kept; the calibration alone is enough.
   r = RunAavio({"config", "--for", (std::filesystem::path(seq) / "calibration").string(),

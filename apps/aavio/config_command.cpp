@@ -69,26 +69,22 @@ Expected<io::LoadedCalibration> CalibrationOf(const std::string& path) {
   return io::LoadCalibration(sequence->calibration);
 }
 
-// The header of a configuration made for a rig: the sensor, the preset and every derived value
-// with its rule (a later source that changes one is named).
-Expected<std::string> RigHeader(const config::ConfigSources& sources,
-                                const std::string& preset_reason,
-                                const pipeline::OdometryConfig& config) {
-  Expected<std::vector<pipeline::SensorSetting>> derived = config::SensorSettingsOf(sources);
-  if (!derived) return derived.status();
+// The header of a configuration made for a rig: the sensor, the preset and every sensor rule's
+// value with its rule (a source that sets one instead is named).
+std::string RigHeader(const config::ConfigSources& sources, const std::string& preset_reason,
+                      const config::ResolvedConfig& resolved) {
   std::string text = "sensor: " + sources.sensor->Describe() + "\n";
   text += "preset: " + sources.preset +
           (preset_reason.empty() ? " (named)" : " (" + preset_reason + ")") + "\n";
   text += "derived from the sensor:\n";
-  pipeline::OdometryConfig copy = config;
+  pipeline::OdometryConfig copy = resolved.config;
   auto index = BuildFieldIndex(copy);
-  for (const pipeline::SensorSetting& s : *derived) {
-    const std::string now = index.fields.at(s.key).get().scalar;
-    double a = 0.0, b = 0.0;
-    const bool kept = now == s.value || (config_detail::ParseDouble(now, &a).ok() &&
-                                         config_detail::ParseDouble(s.value, &b).ok() && a == b);
+  for (const config::SensorRuling& s : resolved.sensor_rulings) {
+    const std::string instead = s.applied ? ""
+                                          : " [" + resolved.origin.at(s.key) + " sets " +
+                                                index.fields.at(s.key).get().scalar + "]";
     text += StrFormat("  %-44s %-6s %s%s\n", s.key.c_str(), s.value.c_str(), s.rule.c_str(),
-                      kept ? "" : (" [a later source sets " + now + "]").c_str());
+                      instead.c_str());
   }
   return text;
 }
@@ -120,11 +116,12 @@ int RunConfig(ConfigOptions options, Context& ctx) {
       preset_reason = config::ConfigureForRig(calibration->rig, &options.sources);
     }
   }
-  Expected<pipeline::OdometryConfig> config = config::ResolveOdometryConfig(options.sources);
-  if (!config) {
-    ctx.err << "aavio config: error: " << config.status().message() << "\n";
+  Expected<config::ResolvedConfig> resolved = config::Resolve(options.sources);
+  if (!resolved) {
+    ctx.err << "aavio config: error: " << resolved.status().message() << "\n";
     return ConfigErrorExitCode(options.sources);
   }
+  const pipeline::OdometryConfig* config = &resolved->config;
   if (options.list) {
     pipeline::OdometryConfig copy = *config;
     auto index = BuildFieldIndex(copy);
@@ -141,19 +138,16 @@ int RunConfig(ConfigOptions options, Context& ctx) {
       const std::string rule = RuleOf(*config, key, field.type);
       ctx.out << std::left << std::setw(52) << key << " " << std::setw(14) << text << " "
               << field.type << (rule.empty() ? "" : ", " + rule) << "\n    " << field.doc << "\n";
+      const auto origin = resolved->origin.find(key);
+      if (origin != resolved->origin.end()) ctx.out << "    from " << origin->second << "\n";
     }
     return kExitOk;
   }
   std::string header = "aavio effective configuration (" + VersionString() +
                        ")\nfrom: " + config::DescribeSources(options.sources);
-  if (options.sources.sensor) {
-    Expected<std::string> rig_header = RigHeader(options.sources, preset_reason, *config);
-    if (!rig_header) {
-      ctx.err << "aavio config: error: " << rig_header.status().message() << "\n";
-      return kExitError;
-    }
-    header += "\nfor: " + options.for_path + "\n" + *rig_header;
-  }
+  if (options.sources.sensor)
+    header +=
+        "\nfor: " + options.for_path + "\n" + RigHeader(options.sources, preset_reason, *resolved);
   const std::string yaml = io::FormatConfigYaml(FlattenConfig(*config), header);
   if (options.out_path.empty()) {
     ctx.out << yaml;

@@ -3,7 +3,7 @@
 #include <CLI/CLI.hpp>
 
 #include "aavio/common/config_fields.hpp"
-#include "aavio/io/presets.hpp"
+#include "aavio/config/presets.hpp"
 #include "aavio/pipeline/odometry_config.hpp"
 #include "cli.hpp"
 
@@ -11,11 +11,11 @@ namespace aavio::cli {
 
 void AddConfigOptions(CLI::App& sub, config::ConfigSources* sources) {
   std::string names;
-  for (const std::string& n : io::PresetNames())
+  for (const std::string& n : config::PresetNames())
     names += (names.empty() ? "" : ", ") + n;
   sub.add_option("--preset", sources->preset, "Parameter preset: " + names);
   std::string overlays;
-  for (const std::string& n : io::OverlayNames())
+  for (const std::string& n : config::OverlayNames())
     overlays += (overlays.empty() ? "" : ", ") + n;
   sub.add_option(
          "--config", sources->files,

@@ -1,8 +1,8 @@
-#include "aavio/io/presets.hpp"
+#include "aavio/config/presets.hpp"
 
 #include "aavio/io/config_yaml.hpp"
 
-namespace aavio::io {
+namespace aavio::config {
 namespace {
 
 std::vector<std::string> Names(bool overlay) {
@@ -17,7 +17,7 @@ Expected<std::vector<ConfigEntry>> Entries(const std::string& name, bool overlay
   const char* kind = overlay ? "overlay" : "preset";
   for (const EmbeddedPreset& preset : EmbeddedPresets()) {
     if (preset.overlay == overlay && name == preset.name)
-      return ParseConfigYaml(preset.yaml, std::string(kind) + " " + name);
+      return io::ParseConfigYaml(preset.yaml, std::string(kind) + " " + name);
   }
   std::string known;
   for (const std::string& n : Names(overlay))
@@ -50,4 +50,4 @@ Expected<std::vector<ConfigEntry>> OverlayEntries(const std::string& name) {
   return Entries(name, true);
 }
 
-}  // namespace aavio::io
+}  // namespace aavio::config

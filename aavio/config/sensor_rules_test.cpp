@@ -1,12 +1,12 @@
-#include "aavio/pipeline/sensor_settings.hpp"
+#include "aavio/config/sensor_rules.hpp"
 
 #include <gtest/gtest.h>
 
 #include <map>
 
-#include "aavio/io/presets.hpp"
+#include "aavio/config/presets.hpp"
 
-namespace aavio::pipeline {
+namespace aavio::config {
 namespace {
 
 // The rectified rigs of the shipped calibrations (`aavio info`).
@@ -15,9 +15,11 @@ const SensorFacts kDsec{640, 480, 536.058, 0.5990};
 const SensorFacts kMvsec{346, 260, 199.653, 0.0999};
 const SensorFacts kTumVie{1280, 720, 974.825, 0.1185};
 
+using pipeline::OdometryConfig;
+
 OdometryConfig Preset(const std::string& name) {
   OdometryConfig config;
-  Expected<std::vector<ConfigEntry>> entries = io::PresetEntries(name);
+  Expected<std::vector<ConfigEntry>> entries = PresetEntries(name);
   EXPECT_TRUE(entries.ok()) << entries.status().message();
   if (entries) {
     EXPECT_TRUE(ApplyConfigEntries(*entries, &config).ok());
@@ -25,10 +27,16 @@ OdometryConfig Preset(const std::string& name) {
   return config;
 }
 
+// What each rule gives on a preset's scene.
+std::vector<SensorRuling> Rulings(const SensorFacts& sensor, OdometryConfig config) {
+  return ApplySensorRules(sensor, {}, &config);
+}
+
 std::map<std::string, std::string> Derive(const SensorFacts& sensor, const std::string& preset) {
   std::map<std::string, std::string> values;
-  for (const SensorSetting& s : DeriveSensorSettings(sensor, Preset(preset))) {
+  for (const SensorRuling& s : Rulings(sensor, Preset(preset))) {
     EXPECT_FALSE(s.rule.empty()) << s.key;
+    EXPECT_TRUE(s.applied) << s.key;
     values[s.key] = s.value;
   }
   return values;
@@ -87,7 +95,7 @@ TEST(SensorSettings, FollowTheResolutionAndTheDisparityElsewhere) {
   // A wider depth range moves the middle of it, and the cull with it.
   OdometryConfig far = Preset("indoor");
   far.mapping.inv_depth_min = 0.05;
-  for (const SensorSetting& s : DeriveSensorSettings(kMvsec, far)) {
+  for (const SensorRuling& s : Rulings(kMvsec, far)) {
     if (s.key == "mapping.depth_refinement.max_relative_stddev") {
       EXPECT_EQ(s.value, "0.081");
     }
@@ -98,9 +106,32 @@ TEST(SensorSettings, ApplyOnTopOfTheDefaultsAndValidate) {
   for (const SensorFacts& sensor : {kRpg, kDsec, kMvsec, kTumVie, SensorFacts{64, 48, 50, 0.1}}) {
     SCOPED_TRACE(sensor.Describe());
     OdometryConfig config;
-    ASSERT_TRUE(
-        ApplyConfigEntries(ToConfigEntries(DeriveSensorSettings(sensor, config)), &config).ok());
+    ApplySensorRules(sensor, {}, &config);
     EXPECT_TRUE(config.Validate().ok()) << config.Validate().message();
+  }
+}
+
+// The rules set typed fields, the value they print is the value set, and a key a source set
+// keeps the source's value.
+TEST(SensorSettings, SetTheFieldsNoSourceSet) {
+  OdometryConfig config;
+  config.edge_sampling.num_points = 777;
+  const std::vector<SensorRuling> rulings =
+      ApplySensorRules(kTumVie, {"edge_sampling.num_points"}, &config);
+  EXPECT_EQ(config.edge_sampling.num_points, 777);
+  EXPECT_EQ(config.time_surface.rate_hz, 40.0);
+  EXPECT_EQ(config.edge_sampling.grid_cols, 16);
+  EXPECT_TRUE(config.mapping.static_stereo.smooth_time_surface);
+  const auto index = BuildFieldIndex(config);
+  for (const SensorRuling& r : rulings) {
+    SCOPED_TRACE(r.key);
+    EXPECT_EQ(r.applied, r.key != "edge_sampling.num_points");
+    if (!r.applied) continue;
+    // The printed value reads back as the value set.
+    OdometryConfig read_back;
+    ASSERT_TRUE(ApplyConfigEntries({{r.key, ConfigValue{.scalar = r.value}}}, &read_back).ok());
+    EXPECT_EQ(BuildFieldIndex(read_back).fields.at(r.key).get().scalar,
+              index.fields.at(r.key).get().scalar);
   }
 }
 
@@ -108,7 +139,7 @@ TEST(SensorSettings, ApplyOnTopOfTheDefaultsAndValidate) {
 TEST(SensorSettings, SkipTheCullWithoutADepthRange) {
   OdometryConfig bad = Preset("indoor");
   bad.mapping.inv_depth_min = -1.0;
-  for (const SensorSetting& s : DeriveSensorSettings(kRpg, bad))
+  for (const SensorRuling& s : Rulings(kRpg, bad))
     EXPECT_NE(s.key, "mapping.depth_refinement.max_relative_stddev") << s.value;
 }
 
@@ -119,11 +150,11 @@ TEST(SensorSettings, SuggestAPresetByTheBaseline) {
   EXPECT_NE(SuggestPreset(kTumVie).reason.find("baseline 0.12 m < 0.3 m"), std::string::npos)
       << SuggestPreset(kTumVie).reason;
   // Every suggestion is a shipped preset.
-  const std::vector<std::string> names = io::PresetNames();
+  const std::vector<std::string> names = PresetNames();
   for (const SensorFacts& s : {kDsec, kRpg}) {
     EXPECT_NE(std::find(names.begin(), names.end(), SuggestPreset(s).name), names.end());
   }
 }
 
 }  // namespace
-}  // namespace aavio::pipeline
+}  // namespace aavio::config

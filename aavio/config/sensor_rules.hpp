@@ -8,18 +8,18 @@
 /// baseline, the tracking's motion model) is a preset's (configs/indoor.yaml,
 /// configs/driving.yaml); `SuggestPreset` picks one from the rig when none is named.
 ///
-/// The resolution: defaults → sensor settings (this file) → preset → files → --set, where a
-/// sensor setting that depends on the scene (the σ_ρ/ρ culling, on the depth range) is computed
-/// from the configuration the later sources make (apps/aavio/config_resolution.cpp).
+/// The rules run once, after every source (config_sources.hpp), on the fields no source set; a
+/// rule that also depends on the scene (the σ_ρ/ρ culling, on the depth range) reads it from the
+/// configuration the sources made.
 
+#include <set>
 #include <string>
 #include <vector>
 
-#include "aavio/common/config_fields.hpp"
 #include "aavio/geometry/stereo_rig.hpp"
 #include "aavio/pipeline/odometry_config.hpp"
 
-namespace aavio::pipeline {
+namespace aavio::config {
 
 /// What the settings depend on: the rectified stereo rig.
 struct SensorFacts {
@@ -36,26 +36,24 @@ struct SensorFacts {
   std::string Describe() const;
 };
 
-/// One derived value, as the text a config file would hold, and why.
-struct SensorSetting {
+/// What one rule gave a key, and why.
+struct SensorRuling {
   std::string key;
-  std::string value;
+  std::string value;  ///< as a configuration file would hold it
   std::string rule;
+  bool applied = true;  ///< false where a source had set the key, which then keeps its value
 };
 
-/// The sensor's settings. `scene` supplies what a rule also needs from the scene (the depth
-/// range); nothing else of it is read.
-std::vector<SensorSetting> DeriveSensorSettings(const SensorFacts& sensor,
-                                                const OdometryConfig& scene);
+/// Sets every field the sensor decides, unless its key is in `set_by_sources`, and returns each
+/// rule's value. The depth range is read from `config`; no other field of it is.
+std::vector<SensorRuling> ApplySensorRules(const SensorFacts& sensor,
+                                           const std::set<std::string>& set_by_sources,
+                                           pipeline::OdometryConfig* config);
 
 /// A configuration file's section whose keys apply only on a small sensor (SensorFacts::small):
 /// where a reference's settings differ between rpg's DAVIS240C and larger sensors (the esvo and
 /// paper overlays' sample budgets).
 inline constexpr char kSmallSensorSection[] = "small_sensor";
-
-/// The settings as configuration entries, to apply before a preset's (each entry's origin names
-/// its rule, for messages).
-std::vector<ConfigEntry> ToConfigEntries(const std::vector<SensorSetting>& settings);
 
 /// The preset a rig suggests when none is named, and why.
 struct PresetSuggestion {
@@ -64,4 +62,4 @@ struct PresetSuggestion {
 };
 PresetSuggestion SuggestPreset(const SensorFacts& sensor);
 
-}  // namespace aavio::pipeline
+}  // namespace aavio::config

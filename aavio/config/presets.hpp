@@ -9,7 +9,7 @@
 #include "aavio/common/config_fields.hpp"
 #include "aavio/common/status.hpp"
 
-namespace aavio::io {
+namespace aavio::config {
 
 struct EmbeddedPreset {
   const char* name;
@@ -28,4 +28,4 @@ Expected<std::vector<ConfigEntry>> PresetEntries(const std::string& name);
 /// The entries of overlay `name`; NotFound listing the overlays that exist.
 Expected<std::vector<ConfigEntry>> OverlayEntries(const std::string& name);
 
-}  // namespace aavio::io
+}  // namespace aavio::config
