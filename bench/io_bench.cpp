@@ -8,10 +8,10 @@
 #include <filesystem>
 #include <random>
 
-#include "aavio/io/bag_streams.hpp"
-#include "aavio/io/bag_writer.hpp"
-#include "aavio/io/dsec_h5_reader.hpp"
-#include "aavio/io/dsec_h5_writer.hpp"
+#include "aavio/io/formats/dsec_h5/dsec_h5_reader.hpp"
+#include "aavio/io/formats/dsec_h5/dsec_h5_writer.hpp"
+#include "aavio/io/formats/rosbag/bag_streams.hpp"
+#include "aavio/io/formats/rosbag/bag_writer.hpp"
 
 namespace {
 

@@ -9,8 +9,8 @@
 #include <random>
 #include <string>
 
-#include "aavio/io/bag_writer.hpp"
-#include "aavio/io/dsec_h5_writer.hpp"
+#include "aavio/io/formats/dsec_h5/dsec_h5_writer.hpp"
+#include "aavio/io/formats/rosbag/bag_writer.hpp"
 #include "aavio/io/sequence.hpp"
 
 namespace {

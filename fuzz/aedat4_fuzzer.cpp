@@ -1,6 +1,6 @@
 // AEDAT 4.0 (iniVation DV): the header's stream XML, packet headers, LZ4 / Zstandard packets and
 // the flatbuffers of event and IMU packets.
-#include "aavio/io/aedat4.hpp"
+#include "aavio/io/formats/aedat4/aedat4.hpp"
 #include "fuzz_input.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

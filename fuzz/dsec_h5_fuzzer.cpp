@@ -7,7 +7,7 @@
 #include <cstring>
 #include <vector>
 
-#include "aavio/io/dsec_h5_reader.hpp"
+#include "aavio/io/formats/dsec_h5/dsec_h5_reader.hpp"
 #include "fuzz_input.hpp"
 
 extern "C" const char* __asan_default_options() {

@@ -1,5 +1,5 @@
 // Prophesee RAW files: the `%` header and EVT 2.0 / EVT 3.0 words.
-#include "aavio/io/prophesee_raw.hpp"
+#include "aavio/io/formats/prophesee_raw/prophesee_raw.hpp"
 #include "fuzz_input.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

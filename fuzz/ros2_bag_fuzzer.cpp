@@ -2,7 +2,7 @@
 // packets (event_camera_msgs) in either.
 #include <cstring>
 
-#include "aavio/io/ros2_bag.hpp"
+#include "aavio/io/formats/ros2_bag/ros2_bag.hpp"
 #include "fuzz_input.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

@@ -1,7 +1,7 @@
 // ROS1 bags (format 2.0): records, the index, chunks stored plain, bz2 or lz4; the event
 // (dvs / dv_ros / prophesee EventArray), IMU and PoseStamped messages in them.
-#include "aavio/io/bag_streams.hpp"
-#include "aavio/io/rosbag_file.hpp"
+#include "aavio/io/formats/rosbag/bag_streams.hpp"
+#include "aavio/io/formats/rosbag/rosbag_file.hpp"
 #include "fuzz_input.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

@@ -1,6 +1,6 @@
 // The text readers, each on every input: events.txt (`t x y p`), imu.txt in the ECD and the
 // TUM-VIE layouts, and TUM trajectories (`t x y z qx qy qz qw`).
-#include "aavio/io/text_streams.hpp"
+#include "aavio/io/formats/text/text_streams.hpp"
 #include "aavio/io/trajectory_io.hpp"
 #include "fuzz_input.hpp"
 

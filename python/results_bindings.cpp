@@ -7,8 +7,8 @@
 
 #include "aavio/eval/alignment.hpp"
 #include "aavio/io/file_checks.hpp"
-#include "aavio/io/ply.hpp"
 #include "aavio/io/trajectory_io.hpp"
+#include "aavio/recording/ply.hpp"
 #include "aavio/recording/run_evaluation.hpp"
 #include "aavio/recording/run_recorder.hpp"
 #include "aavio/sim/simulator.hpp"
@@ -95,7 +95,7 @@ py::dict LoadRun(const std::string& folder) {
           : py::none();
   const fs::path ply = dir / recording::run_files::kCloud;
   if (fs::exists(ply)) {
-    const io::ColouredCloud cloud = Unwrap(io::ReadPly(ply.string()));
+    const recording::ColouredCloud cloud = Unwrap(recording::ReadPly(ply.string()));
     py::array_t<float> points({static_cast<py::ssize_t>(cloud.points.size()), py::ssize_t{3}});
     py::array_t<std::uint8_t> colours(
         {static_cast<py::ssize_t>(cloud.points.size()), py::ssize_t{3}});

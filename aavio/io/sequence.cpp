@@ -5,12 +5,12 @@
 #include <set>
 
 #include "aavio/common/format.hpp"
-#include "aavio/io/aedat4.hpp"
 #include "aavio/io/config_yaml.hpp"
-#include "aavio/io/dsec_h5_reader.hpp"
-#include "aavio/io/prophesee_raw.hpp"
-#include "aavio/io/ros2_bag.hpp"
-#include "aavio/io/rosbag_messages.hpp"
+#include "aavio/io/formats/aedat4/aedat4.hpp"
+#include "aavio/io/formats/dsec_h5/dsec_h5_reader.hpp"
+#include "aavio/io/formats/prophesee_raw/prophesee_raw.hpp"
+#include "aavio/io/formats/ros2_bag/ros2_bag.hpp"
+#include "aavio/io/formats/rosbag/rosbag_messages.hpp"
 #include "aavio/io/trajectory_io.hpp"
 #include "aavio/io/yaml_reading.hpp"
 

@@ -28,9 +28,9 @@
 #include <vector>
 
 #include "aavio/common/status.hpp"
-#include "aavio/io/bag_streams.hpp"
+#include "aavio/io/formats/rosbag/bag_streams.hpp"
+#include "aavio/io/formats/text/text_streams.hpp"
 #include "aavio/io/streams.hpp"
-#include "aavio/io/text_streams.hpp"
 
 namespace aavio::io {
 

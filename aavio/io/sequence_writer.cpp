@@ -2,8 +2,8 @@
 
 #include <filesystem>
 
-#include "aavio/io/dsec_h5_writer.hpp"
-#include "aavio/io/text_streams.hpp"
+#include "aavio/io/formats/dsec_h5/dsec_h5_writer.hpp"
+#include "aavio/io/formats/text/text_streams.hpp"
 #include "aavio/io/trajectory_io.hpp"
 
 namespace aavio::io {

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "aavio/io/bag_writer.hpp"
+#include "aavio/io/formats/rosbag/bag_writer.hpp"
 #include "aavio/io/sequence.hpp"
 
 namespace aavio::io {

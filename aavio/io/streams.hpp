@@ -57,6 +57,24 @@ class Stream {
 using EventStream = Stream<events::Event>;
 using ImuStream = Stream<imu::ImuSample>;
 
+/// A file format's Stream, its forwarding written once: the format's `Decoder` (declared here,
+/// defined in the format's .cpp) holds the `StreamInfo info` and does the work in `ReadUntil`,
+/// `Seek` and `AtEnd`. A format's class adds its `Open` and what else it knows of the file; its
+/// .cpp defines the destructor and instantiates this class (decoded_stream_impl.hpp).
+template <typename T, typename Decoder>
+class DecodedStream : public Stream<T> {
+ public:
+  const StreamInfo& info() const override;
+  Status ReadUntil(TimeNs t_end_ns, std::vector<T>* out) override;
+  Status Seek(TimeNs t_ns) override;
+  bool AtEnd() const override;
+
+ protected:
+  explicit DecodedStream(std::unique_ptr<Decoder> decoder);
+  ~DecodedStream() override;
+  std::unique_ptr<Decoder> decoder_;
+};
+
 /// Holds elements read in file order and releases them in time order (the policy above).
 template <typename T>
 class ReorderBuffer {

@@ -10,13 +10,12 @@ Expected<MapOutputs> MapOutputs::Open(const std::string& depth_dir, const std::s
                                       const mapping::MappingConfig& config) {
   Expected<io::DepthFolderWriter> depth = io::DepthFolderWriter::Create(depth_dir);
   if (!depth) return depth.status();
-  Expected<io::PlyWriter> cloud =
-      io::PlyWriter::Open(cloud_path, "aavio global map (world frame, metres)");
+  Expected<PlyWriter> cloud = PlyWriter::Open(cloud_path, "aavio global map (world frame, metres)");
   if (!cloud) return cloud.status();
   return MapOutputs(std::move(*depth), std::move(*cloud), stereo, config);
 }
 
-MapOutputs::MapOutputs(io::DepthFolderWriter depth_writer, io::PlyWriter cloud_file,
+MapOutputs::MapOutputs(io::DepthFolderWriter depth_writer, PlyWriter cloud_file,
                        const mapping::RectifiedStereo& stereo, const mapping::MappingConfig& config)
     : stereo_(stereo),
       depth_writer_(std::move(depth_writer)),
@@ -35,7 +34,7 @@ Expected<std::optional<cv::Mat>> MapOutputs::Add(const mapping::LocalMap& map,
   std::vector<mapping::CloudPoint> added;
   cloud_.Add(map, cloud_depth_m_, &added);
   std::vector<Eigen::Vector3f> points;
-  std::vector<io::Rgb> rgb;
+  std::vector<Rgb> rgb;
   for (const mapping::CloudPoint& p : added) {
     const cv::Vec3b c = colours_(static_cast<double>(p.inv_depth));
     points.push_back(p.p_world);

@@ -11,11 +11,11 @@
 #include "aavio/common/status.hpp"
 #include "aavio/events/observation.hpp"
 #include "aavio/io/depth_folder_writer.hpp"
-#include "aavio/io/ply.hpp"
 #include "aavio/mapping/global_cloud.hpp"
 #include "aavio/mapping/local_map.hpp"
 #include "aavio/mapping/mapping_config.hpp"
 #include "aavio/recording/depth_images.hpp"
+#include "aavio/recording/ply.hpp"
 
 namespace aavio::recording {
 
@@ -43,7 +43,7 @@ class MapOutputs {
   void AddTo(nlohmann::json* summary) const;
 
  private:
-  MapOutputs(io::DepthFolderWriter depth_writer, io::PlyWriter cloud_file,
+  MapOutputs(io::DepthFolderWriter depth_writer, PlyWriter cloud_file,
              const mapping::RectifiedStereo& stereo, const mapping::MappingConfig& config);
 
   mapping::RectifiedStereo stereo_;
@@ -51,7 +51,7 @@ class MapOutputs {
   int depth_every_;
   double cloud_depth_m_;
   mapping::GlobalCloud cloud_;
-  io::PlyWriter cloud_file_;
+  PlyWriter cloud_file_;
   InverseDepthColours colours_;
   int confirmed_maps_ = 0;
   std::size_t confirmed_points_ = 0;

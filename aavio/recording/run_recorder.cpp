@@ -9,9 +9,9 @@
 #include "aavio/io/config_yaml.hpp"
 #include "aavio/io/ground_truth_depth.hpp"
 #include "aavio/io/output_folder.hpp"
-#include "aavio/io/ply.hpp"
 #include "aavio/io/trajectory_io.hpp"
 #include "aavio/recording/motion_outputs.hpp"
+#include "aavio/recording/ply.hpp"
 
 namespace aavio::recording {
 namespace {

@@ -9,8 +9,8 @@
 #include <fstream>
 
 #include "aavio/io/ground_truth_depth.hpp"
-#include "aavio/io/ply.hpp"
 #include "aavio/io/trajectory_io.hpp"
+#include "aavio/recording/ply.hpp"
 #include "tests/preset_config.hpp"
 #include "tests/simulated_sequence.hpp"
 
@@ -108,7 +108,7 @@ TEST(RunRecorder, OdometryRunWritesEverythingAndScoresDepthAsTheFilesScore) {
             static_cast<int>(io::ReadGtDepthIndex((out / "depth").string())->size()));
 
   // map.ply holds the global cloud, in the layout the reader takes back.
-  Expected<io::ColouredCloud> cloud = io::ReadPly((out / "map.ply").string());
+  Expected<ColouredCloud> cloud = ReadPly((out / "map.ply").string());
   ASSERT_TRUE(cloud.ok()) << cloud.status().message();
   EXPECT_EQ(cloud->points.size(), summary["map_points_global"].get<std::size_t>());
   EXPECT_GT(cloud->points.size(), 100u);

@@ -6,8 +6,8 @@
 #include <ostream>
 
 #include "aavio/common/format.hpp"
-#include "aavio/io/bag_streams.hpp"
 #include "aavio/io/calibration.hpp"
+#include "aavio/io/formats/rosbag/bag_streams.hpp"
 #include "aavio/io/output_folder.hpp"
 #include "aavio/io/sequence.hpp"
 #include "aavio/io/sequence_writer.hpp"

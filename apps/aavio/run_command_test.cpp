@@ -14,8 +14,8 @@
 
 #include "aavio/common/format.hpp"
 #include "aavio/common/time.hpp"
-#include "aavio/io/ply.hpp"
 #include "aavio/io/trajectory_io.hpp"
+#include "aavio/recording/ply.hpp"
 #include "cli.hpp"
 #include "cli_test_util.hpp"
 #include "tests/event_fixtures.hpp"
@@ -395,8 +395,8 @@ TEST(Cli, RunWritesAGravityAlignedWorldOnRequest) {
     EXPECT_LT((R * (*p)[i].T_world_body.t - (*p_up)[i].T_world_body.t).norm(), 1e-6) << i;
     EXPECT_LT((R * (*p)[i].T_world_body.R - (*p_up)[i].T_world_body.R).norm(), 1e-6) << i;
   }
-  Expected<io::ColouredCloud> cloud = io::ReadPly((camera / "map.ply").string());
-  Expected<io::ColouredCloud> cloud_up = io::ReadPly((gravity / "map.ply").string());
+  Expected<recording::ColouredCloud> cloud = recording::ReadPly((camera / "map.ply").string());
+  Expected<recording::ColouredCloud> cloud_up = recording::ReadPly((gravity / "map.ply").string());
   ASSERT_TRUE(cloud && cloud_up);
   ASSERT_EQ(cloud->points.size(), cloud_up->points.size());
   ASSERT_GT(cloud->points.size(), 100u);

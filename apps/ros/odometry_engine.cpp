@@ -10,7 +10,7 @@
 #include "aavio/config/config_sources.hpp"
 #include "aavio/geometry/velocity.hpp"
 #include "aavio/io/calibration.hpp"
-#include "aavio/io/rosbag_messages.hpp"
+#include "aavio/io/formats/rosbag/rosbag_messages.hpp"
 #include "aavio/pipeline/live_odometry.hpp"
 
 namespace aavio::ros_node {

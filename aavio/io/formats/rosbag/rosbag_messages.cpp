@@ -1,4 +1,4 @@
-#include "aavio/io/rosbag_messages.hpp"
+#include "aavio/io/formats/rosbag/rosbag_messages.hpp"
 
 #include <cstring>
 

@@ -1,4 +1,4 @@
-#include "aavio/io/bag_writer.hpp"
+#include "aavio/io/formats/rosbag/bag_writer.hpp"
 
 #include <bzlib.h>
 #include <lz4frame.h>
@@ -9,7 +9,7 @@
 #include <limits>
 #include <vector>
 
-#include "aavio/io/rosbag_messages.hpp"
+#include "aavio/io/formats/rosbag/rosbag_messages.hpp"
 
 namespace aavio::io {
 

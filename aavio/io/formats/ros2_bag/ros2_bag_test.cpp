@@ -1,4 +1,4 @@
-#include "aavio/io/ros2_bag.hpp"
+#include "aavio/io/formats/ros2_bag/ros2_bag.hpp"
 
 #include <gtest/gtest.h>
 #include <lz4frame.h>

@@ -1,4 +1,4 @@
-#include "aavio/io/aedat4.hpp"
+#include "aavio/io/formats/aedat4/aedat4.hpp"
 
 #include <algorithm>
 #include <cctype>

@@ -21,37 +21,29 @@ enum class ImuTextLayout {
   kTumVie,  ///< t[µs] gx gy gz ax ay az
 };
 
-class TextEventStream final : public EventStream {
+struct TextEventDecoder;  // the format's decoder (text_streams.cpp)
+
+class TextEventStream final : public DecodedStream<events::Event, TextEventDecoder> {
  public:
   static Expected<std::unique_ptr<TextEventStream>> Open(const std::string& path,
                                                          const StreamOptions& options);
   ~TextEventStream() override;
-  const StreamInfo& info() const override;
-  Status ReadUntil(TimeNs t_end_ns, std::vector<events::Event>* out) override;
-  Status Seek(TimeNs t_ns) override;
-  bool AtEnd() const override;
 
  private:
-  struct State;
-  explicit TextEventStream(std::unique_ptr<State> state);
-  std::unique_ptr<State> s_;
+  using DecodedStream::DecodedStream;
 };
 
-class TextImuStream final : public ImuStream {
+struct TextImuDecoder;  // the format's decoder (text_streams.cpp)
+
+class TextImuStream final : public DecodedStream<imu::ImuSample, TextImuDecoder> {
  public:
   static Expected<std::unique_ptr<TextImuStream>> Open(const std::string& path,
                                                        ImuTextLayout layout,
                                                        const StreamOptions& options);
   ~TextImuStream() override;
-  const StreamInfo& info() const override;
-  Status ReadUntil(TimeNs t_end_ns, std::vector<imu::ImuSample>* out) override;
-  Status Seek(TimeNs t_ns) override;
-  bool AtEnd() const override;
 
  private:
-  struct State;
-  explicit TextImuStream(std::unique_ptr<State> state);
-  std::unique_ptr<State> s_;
+  using DecodedStream::DecodedStream;
 };
 
 /// Writes events.txt (`t x y p`, 9-decimal seconds), streaming.

@@ -28,22 +28,18 @@ struct Ros2EventTopic {
 /// The EventPacket topics of a ROS 2 bag.
 Expected<std::vector<Ros2EventTopic>> ListRos2EventTopics(const std::string& path);
 
-class Ros2BagEventStream final : public EventStream {
+struct Ros2BagEventDecoder;  // the format's decoder (ros2_bag.cpp)
+
+class Ros2BagEventStream final : public DecodedStream<events::Event, Ros2BagEventDecoder> {
  public:
   /// `topic` empty: the bag's only EventPacket topic.
   static Expected<std::unique_ptr<Ros2BagEventStream>> Open(const std::string& path,
                                                             const std::string& topic,
                                                             const StreamOptions& options);
   ~Ros2BagEventStream() override;
-  const StreamInfo& info() const override;
-  Status ReadUntil(TimeNs t_end_ns, std::vector<events::Event>* out) override;
-  Status Seek(TimeNs t_ns) override;
-  bool AtEnd() const override;
 
  private:
-  struct State;
-  explicit Ros2BagEventStream(std::unique_ptr<State> state);
-  std::unique_ptr<State> s_;
+  using DecodedStream::DecodedStream;
 };
 
 }  // namespace aavio::io

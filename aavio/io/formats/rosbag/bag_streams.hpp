@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "aavio/geometry/pose_buffer.hpp"
-#include "aavio/io/rosbag_file.hpp"
+#include "aavio/io/formats/rosbag/rosbag_file.hpp"
 #include "aavio/io/streams.hpp"
 
 namespace aavio::io {
@@ -23,41 +23,33 @@ struct BagTopics {
   std::string ground_truth;
 };
 
-class BagEventStream final : public EventStream {
+struct BagEventDecoder;  // the format's decoder (bag_streams.cpp)
+
+class BagEventStream final : public DecodedStream<events::Event, BagEventDecoder> {
  public:
   static Expected<std::unique_ptr<BagEventStream>> Open(const std::string& path,
                                                         const std::string& topic,
                                                         const StreamOptions& options);
   ~BagEventStream() override;
-  const StreamInfo& info() const override;
-  Status ReadUntil(TimeNs t_end_ns, std::vector<events::Event>* out) override;
-  Status Seek(TimeNs t_ns) override;
-  bool AtEnd() const override;
   /// Number of EventArray messages on the topic (from the index).
   std::uint64_t message_count() const;
 
  private:
-  struct State;
-  explicit BagEventStream(std::unique_ptr<State> state);
-  std::unique_ptr<State> s_;
+  using DecodedStream::DecodedStream;
 };
 
-class BagImuStream final : public ImuStream {
+struct BagImuDecoder;  // the format's decoder (bag_streams.cpp)
+
+class BagImuStream final : public DecodedStream<imu::ImuSample, BagImuDecoder> {
  public:
   /// `topic` empty: the bag's only sensor_msgs/Imu topic.
   static Expected<std::unique_ptr<BagImuStream>> Open(const std::string& path,
                                                       const std::string& topic,
                                                       const StreamOptions& options);
   ~BagImuStream() override;
-  const StreamInfo& info() const override;
-  Status ReadUntil(TimeNs t_end_ns, std::vector<imu::ImuSample>* out) override;
-  Status Seek(TimeNs t_ns) override;
-  bool AtEnd() const override;
 
  private:
-  struct State;
-  explicit BagImuStream(std::unique_ptr<State> state);
-  std::unique_ptr<State> s_;
+  using DecodedStream::DecodedStream;
 };
 
 /// All poses of a geometry_msgs/PoseStamped topic (empty: the only one), sorted by stamp.

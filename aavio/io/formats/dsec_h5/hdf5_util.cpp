@@ -1,4 +1,4 @@
-#include "aavio/io/hdf5_util.hpp"
+#include "aavio/io/formats/dsec_h5/hdf5_util.hpp"
 
 #include <algorithm>
 #include <chrono>

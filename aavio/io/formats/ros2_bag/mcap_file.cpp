@@ -1,4 +1,4 @@
-#include "aavio/io/mcap_file.hpp"
+#include "aavio/io/formats/ros2_bag/mcap_file.hpp"
 
 #include <algorithm>
 #include <cstring>

@@ -12,16 +12,13 @@
 
 namespace aavio::io {
 
-class DsecH5EventStream final : public EventStream {
+struct DsecH5Decoder;  // the format's decoder (dsec_h5_reader.cpp)
+
+class DsecH5EventStream final : public DecodedStream<events::Event, DsecH5Decoder> {
  public:
   static Expected<std::unique_ptr<DsecH5EventStream>> Open(const std::string& path,
                                                            const StreamOptions& options);
   ~DsecH5EventStream() override;
-
-  const StreamInfo& info() const override;
-  Status ReadUntil(TimeNs t_end_ns, std::vector<events::Event>* out) override;
-  Status Seek(TimeNs t_ns) override;
-  bool AtEnd() const override;
 
   /// Events per millisecond of the file, from ms_to_idx (empty when the file has none or it is
   /// inconsistent): the event-rate profile without reading the events.
@@ -29,12 +26,10 @@ class DsecH5EventStream final : public EventStream {
   std::int64_t t_offset_us() const;
 
  private:
-  struct State;
-  explicit DsecH5EventStream(std::unique_ptr<State> state);
+  using DecodedStream::DecodedStream;
   /// Open without the crash probe.
   static Expected<std::unique_ptr<DsecH5EventStream>> OpenHere(const std::string& path,
                                                                const StreamOptions& options);
-  std::unique_ptr<State> s_;
 };
 
 }  // namespace aavio::io

@@ -6,9 +6,9 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "aavio/io/dsec_h5_reader.hpp"
-#include "aavio/io/dsec_h5_writer.hpp"
-#include "aavio/io/hdf5_util.hpp"
+#include "aavio/io/formats/dsec_h5/dsec_h5_reader.hpp"
+#include "aavio/io/formats/dsec_h5/dsec_h5_writer.hpp"
+#include "aavio/io/formats/dsec_h5/hdf5_util.hpp"
 #include "tests/event_fixtures.hpp"
 #include "tests/test_utils.hpp"
 

@@ -1,4 +1,4 @@
-#include "aavio/io/ply.hpp"
+#include "aavio/recording/ply.hpp"
 
 #include <gtest/gtest.h>
 #include <sys/resource.h>
@@ -10,7 +10,7 @@
 
 #include "tests/test_utils.hpp"
 
-namespace aavio::io {
+namespace aavio::recording {
 namespace {
 
 TEST(Ply, RoundTripsPointsColoursAndComment) {
@@ -150,4 +150,4 @@ TEST(Ply, RefusesBadFilesWithWhatIsWrong) {
 }
 
 }  // namespace
-}  // namespace aavio::io
+}  // namespace aavio::recording

@@ -2,8 +2,8 @@
 // python3-rosbag (tests/fixtures/check_bag.py) and by our reader.
 #include <gtest/gtest.h>
 
-#include "aavio/io/bag_streams.hpp"
-#include "aavio/io/bag_writer.hpp"
+#include "aavio/io/formats/rosbag/bag_streams.hpp"
+#include "aavio/io/formats/rosbag/bag_writer.hpp"
 #include "tests/event_fixtures.hpp"
 #include "tests/test_utils.hpp"
 

@@ -1,10 +1,11 @@
-#include "aavio/io/prophesee_raw.hpp"
+#include "aavio/io/formats/prophesee_raw/prophesee_raw.hpp"
 
 #include <cstdio>
 #include <cstring>
 #include <string_view>
 
 #include "aavio/common/format.hpp"
+#include "aavio/io/decoded_stream_impl.hpp"
 #include "aavio/io/event_codecs.hpp"
 #include "aavio/io/file_checks.hpp"
 
@@ -104,7 +105,7 @@ constexpr std::size_t kBlockBytes = 1 << 20;
 
 }  // namespace
 
-struct PropheseeRawEventStream::State {
+struct PropheseeRawDecoder {
   std::string path;
   std::FILE* file = nullptr;
   RawHeader header;
@@ -114,7 +115,7 @@ struct PropheseeRawEventStream::State {
   std::vector<unsigned char> block;
   std::int64_t position = 0;  // file offset of the next byte to decode
   bool exhausted = false;
-  ~State() {
+  ~PropheseeRawDecoder() {
     if (file) std::fclose(file);
   }
 
@@ -148,15 +149,34 @@ struct PropheseeRawEventStream::State {
     position += static_cast<std::int64_t>(whole);
     return Status::Ok();
   }
+
+  Status ReadUntil(TimeNs t_end_ns, std::vector<events::Event>* out) {
+    Status pushed = Status::Ok();
+    while (!reorder.CanRelease(t_end_ns) && !exhausted && pushed.ok()) {
+      AAVIO_RETURN_IF_ERROR(NextBlock([&](const events::Event& e, std::int64_t at) {
+        if (pushed.ok()) pushed = reorder.Push(e, path + ", byte " + std::to_string(at));
+      }));
+    }
+    AAVIO_RETURN_IF_ERROR(pushed);
+    reorder.Release(t_end_ns, out);
+    return Status::Ok();
+  }
+  Status Seek(TimeNs t_ns) {
+    Rewind();
+    reorder.Reset(t_ns);
+    return Status::Ok();
+  }
+  bool AtEnd() const { return exhausted && reorder.size() == 0; }
 };
 
-PropheseeRawEventStream::PropheseeRawEventStream(std::unique_ptr<State> s) : s_(std::move(s)) {}
+template class DecodedStream<events::Event, PropheseeRawDecoder>;
+
 PropheseeRawEventStream::~PropheseeRawEventStream() = default;
 
 Expected<std::unique_ptr<PropheseeRawEventStream>> PropheseeRawEventStream::Open(
     const std::string& path, const StreamOptions& options) {
   AAVIO_RETURN_IF_ERROR(CheckRegularFile(path, "Prophesee RAW file"));
-  auto s = std::make_unique<State>();
+  auto s = std::make_unique<PropheseeRawDecoder>();
   s->path = path;
   s->file = std::fopen(path.c_str(), "rb");
   if (!s->file) return IoError(path + ": cannot open (" + std::strerror(errno) + ")");
@@ -192,32 +212,6 @@ Expected<std::unique_ptr<PropheseeRawEventStream>> PropheseeRawEventStream::Open
   s->reorder = ReorderBuffer<events::Event>(options.max_reorder_ns);
   s->Rewind();
   return std::unique_ptr<PropheseeRawEventStream>(new PropheseeRawEventStream(std::move(s)));
-}
-
-const StreamInfo& PropheseeRawEventStream::info() const {
-  return s_->info;
-}
-
-Status PropheseeRawEventStream::ReadUntil(TimeNs t_end_ns, std::vector<events::Event>* out) {
-  Status pushed = Status::Ok();
-  while (!s_->reorder.CanRelease(t_end_ns) && !s_->exhausted && pushed.ok()) {
-    AAVIO_RETURN_IF_ERROR(s_->NextBlock([&](const events::Event& e, std::int64_t at) {
-      if (pushed.ok()) pushed = s_->reorder.Push(e, s_->path + ", byte " + std::to_string(at));
-    }));
-  }
-  AAVIO_RETURN_IF_ERROR(pushed);
-  s_->reorder.Release(t_end_ns, out);
-  return Status::Ok();
-}
-
-Status PropheseeRawEventStream::Seek(TimeNs t_ns) {
-  s_->Rewind();
-  s_->reorder.Reset(t_ns);
-  return Status::Ok();
-}
-
-bool PropheseeRawEventStream::AtEnd() const {
-  return s_->exhausted && s_->reorder.size() == 0;
 }
 
 }  // namespace aavio::io

@@ -1,4 +1,4 @@
-#include "aavio/io/text_streams.hpp"
+#include "aavio/io/formats/text/text_streams.hpp"
 
 #include <algorithm>
 #include <array>
@@ -8,6 +8,7 @@
 #include <filesystem>
 
 #include "aavio/common/format.hpp"
+#include "aavio/io/decoded_stream_impl.hpp"
 #include "aavio/io/file_checks.hpp"
 #include "aavio/io/text_fields.hpp"
 
@@ -228,6 +229,7 @@ struct TextStreamCore {
     reorder.Reset(t_ns);
     return Status::Ok();
   }
+  bool AtEnd() const { return exhausted && reorder.size() == 0; }
   /// First and last stamps for the info, from the head and the tail of the file.
   Status ReadEnds() {
     std::string_view line;
@@ -263,15 +265,17 @@ struct ImuParse {
 
 }  // namespace
 
-struct TextEventStream::State : TextStreamCore<events::Event, EventParse> {};
-struct TextImuStream::State : TextStreamCore<imu::ImuSample, ImuParse> {};
+struct TextEventDecoder : TextStreamCore<events::Event, EventParse> {};
+template class DecodedStream<events::Event, TextEventDecoder>;
 
-TextEventStream::TextEventStream(std::unique_ptr<State> s) : s_(std::move(s)) {}
+struct TextImuDecoder : TextStreamCore<imu::ImuSample, ImuParse> {};
+template class DecodedStream<imu::ImuSample, TextImuDecoder>;
+
 TextEventStream::~TextEventStream() = default;
 
 Expected<std::unique_ptr<TextEventStream>> TextEventStream::Open(const std::string& path,
                                                                  const StreamOptions& options) {
-  auto s = std::make_unique<State>();
+  auto s = std::make_unique<TextEventDecoder>();
   AAVIO_RETURN_IF_ERROR(s->lines.Open(path));
   s->parse.options = options;
   s->reorder = ReorderBuffer<events::Event>(options.max_reorder_ns);
@@ -280,45 +284,18 @@ Expected<std::unique_ptr<TextEventStream>> TextEventStream::Open(const std::stri
   return std::unique_ptr<TextEventStream>(new TextEventStream(std::move(s)));
 }
 
-const StreamInfo& TextEventStream::info() const {
-  return s_->info;
-}
-Status TextEventStream::ReadUntil(TimeNs t_end_ns, std::vector<events::Event>* out) {
-  return s_->ReadUntil(t_end_ns, out);
-}
-Status TextEventStream::Seek(TimeNs t_ns) {
-  return s_->Seek(t_ns);
-}
-bool TextEventStream::AtEnd() const {
-  return s_->exhausted && s_->reorder.size() == 0;
-}
-
-TextImuStream::TextImuStream(std::unique_ptr<State> s) : s_(std::move(s)) {}
 TextImuStream::~TextImuStream() = default;
 
 Expected<std::unique_ptr<TextImuStream>> TextImuStream::Open(const std::string& path,
                                                              ImuTextLayout layout,
                                                              const StreamOptions& options) {
-  auto s = std::make_unique<State>();
+  auto s = std::make_unique<TextImuDecoder>();
   AAVIO_RETURN_IF_ERROR(s->lines.Open(path));
   s->parse.layout = layout;
   s->reorder = ReorderBuffer<imu::ImuSample>(options.max_reorder_ns);
   s->info.description = "IMU text: " + path;
   AAVIO_RETURN_IF_ERROR(s->ReadEnds());
   return std::unique_ptr<TextImuStream>(new TextImuStream(std::move(s)));
-}
-
-const StreamInfo& TextImuStream::info() const {
-  return s_->info;
-}
-Status TextImuStream::ReadUntil(TimeNs t_end_ns, std::vector<imu::ImuSample>* out) {
-  return s_->ReadUntil(t_end_ns, out);
-}
-Status TextImuStream::Seek(TimeNs t_ns) {
-  return s_->Seek(t_ns);
-}
-bool TextImuStream::AtEnd() const {
-  return s_->exhausted && s_->reorder.size() == 0;
 }
 
 Expected<std::unique_ptr<TextEventWriter>> TextEventWriter::Create(const std::string& path) {

@@ -1,4 +1,4 @@
-#include "aavio/io/prophesee_raw.hpp"
+#include "aavio/io/formats/prophesee_raw/prophesee_raw.hpp"
 
 #include <gtest/gtest.h>
 

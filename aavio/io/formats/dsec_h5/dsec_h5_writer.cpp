@@ -1,11 +1,11 @@
-#include "aavio/io/dsec_h5_writer.hpp"
+#include "aavio/io/formats/dsec_h5/dsec_h5_writer.hpp"
 
 #include <algorithm>
 #include <array>
 #include <limits>
 #include <vector>
 
-#include "aavio/io/hdf5_util.hpp"
+#include "aavio/io/formats/dsec_h5/hdf5_util.hpp"
 
 namespace aavio::io {
 

@@ -1,4 +1,4 @@
-#include "aavio/io/ros2_bag.hpp"
+#include "aavio/io/formats/ros2_bag/ros2_bag.hpp"
 
 #include <sqlite3.h>
 
@@ -8,9 +8,10 @@
 #include <optional>
 
 #include "aavio/common/format.hpp"
+#include "aavio/io/decoded_stream_impl.hpp"
 #include "aavio/io/event_codecs.hpp"
 #include "aavio/io/file_checks.hpp"
-#include "aavio/io/mcap_file.hpp"
+#include "aavio/io/formats/ros2_bag/mcap_file.hpp"
 
 namespace aavio::io {
 
@@ -254,7 +255,7 @@ Expected<std::unique_ptr<Storage>> OpenStorage(const std::string& file) {
 
 }  // namespace
 
-struct Ros2BagEventStream::State {
+struct Ros2BagEventDecoder {
   std::string path, topic;
   std::vector<std::unique_ptr<Storage>> files;
   std::vector<std::int64_t> topic_ids;  // per file
@@ -300,7 +301,27 @@ struct Ros2BagEventStream::State {
     return decoder->Decode(packet.events, packet.event_bytes, 0,
                            [&](const events::Event& e, std::int64_t) { emit(e, where); });
   }
+
+  Status ReadUntil(TimeNs t_end_ns, std::vector<events::Event>* out) {
+    Status pushed = Status::Ok();
+    while (!reorder.CanRelease(t_end_ns) && !exhausted && pushed.ok()) {
+      AAVIO_RETURN_IF_ERROR(NextPacket([&](const events::Event& e, const std::string& where) {
+        if (pushed.ok()) pushed = reorder.Push(e, where);
+      }));
+    }
+    AAVIO_RETURN_IF_ERROR(pushed);
+    reorder.Release(t_end_ns, out);
+    return Status::Ok();
+  }
+  Status Seek(TimeNs t_ns) {
+    AAVIO_RETURN_IF_ERROR(Rewind());
+    reorder.Reset(t_ns);
+    return Status::Ok();
+  }
+  bool AtEnd() const { return exhausted && reorder.size() == 0; }
 };
+
+template class DecodedStream<events::Event, Ros2BagEventDecoder>;
 
 Expected<std::vector<Ros2EventTopic>> ListRos2EventTopics(const std::string& path) {
   Expected<std::vector<std::string>> files = StorageFiles(path);
@@ -333,14 +354,13 @@ Expected<std::vector<Ros2EventTopic>> ListRos2EventTopics(const std::string& pat
   return out;
 }
 
-Ros2BagEventStream::Ros2BagEventStream(std::unique_ptr<State> s) : s_(std::move(s)) {}
 Ros2BagEventStream::~Ros2BagEventStream() = default;
 
 Expected<std::unique_ptr<Ros2BagEventStream>> Ros2BagEventStream::Open(
     const std::string& path, const std::string& topic, const StreamOptions& options) {
   Expected<std::vector<std::string>> files = StorageFiles(path);
   if (!files) return files.status();
-  auto s = std::make_unique<State>();
+  auto s = std::make_unique<Ros2BagEventDecoder>();
   s->path = path;
   for (const std::string& f : *files) {
     Expected<std::unique_ptr<Storage>> opened = OpenStorage(f);
@@ -409,32 +429,6 @@ Expected<std::unique_ptr<Ros2BagEventStream>> Ros2BagEventStream::Open(
   s->reorder = ReorderBuffer<events::Event>(options.max_reorder_ns);
   AAVIO_RETURN_IF_ERROR(s->Rewind());
   return std::unique_ptr<Ros2BagEventStream>(new Ros2BagEventStream(std::move(s)));
-}
-
-const StreamInfo& Ros2BagEventStream::info() const {
-  return s_->info;
-}
-
-Status Ros2BagEventStream::ReadUntil(TimeNs t_end_ns, std::vector<events::Event>* out) {
-  Status pushed = Status::Ok();
-  while (!s_->reorder.CanRelease(t_end_ns) && !s_->exhausted && pushed.ok()) {
-    AAVIO_RETURN_IF_ERROR(s_->NextPacket([&](const events::Event& e, const std::string& where) {
-      if (pushed.ok()) pushed = s_->reorder.Push(e, where);
-    }));
-  }
-  AAVIO_RETURN_IF_ERROR(pushed);
-  s_->reorder.Release(t_end_ns, out);
-  return Status::Ok();
-}
-
-Status Ros2BagEventStream::Seek(TimeNs t_ns) {
-  AAVIO_RETURN_IF_ERROR(s_->Rewind());
-  s_->reorder.Reset(t_ns);
-  return Status::Ok();
-}
-
-bool Ros2BagEventStream::AtEnd() const {
-  return s_->exhausted && s_->reorder.size() == 0;
 }
 
 }  // namespace aavio::io

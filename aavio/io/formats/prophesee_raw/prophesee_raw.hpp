@@ -20,20 +20,16 @@
 
 namespace aavio::io {
 
-class PropheseeRawEventStream final : public EventStream {
+struct PropheseeRawDecoder;  // the format's decoder (prophesee_raw.cpp)
+
+class PropheseeRawEventStream final : public DecodedStream<events::Event, PropheseeRawDecoder> {
  public:
   static Expected<std::unique_ptr<PropheseeRawEventStream>> Open(const std::string& path,
                                                                  const StreamOptions& options);
   ~PropheseeRawEventStream() override;
-  const StreamInfo& info() const override;
-  Status ReadUntil(TimeNs t_end_ns, std::vector<events::Event>* out) override;
-  Status Seek(TimeNs t_ns) override;
-  bool AtEnd() const override;
 
  private:
-  struct State;
-  explicit PropheseeRawEventStream(std::unique_ptr<State> state);
-  std::unique_ptr<State> s_;
+  using DecodedStream::DecodedStream;
 };
 
 }  // namespace aavio::io

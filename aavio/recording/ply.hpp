@@ -14,7 +14,7 @@
 
 #include "aavio/common/status.hpp"
 
-namespace aavio::io {
+namespace aavio::recording {
 
 using Rgb = std::array<std::uint8_t, 3>;
 
@@ -58,4 +58,4 @@ class PlyWriter {
 /// Reads a file in the layout WritePly writes (other PLY layouts are refused with what was found).
 Expected<ColouredCloud> ReadPly(const std::string& path);
 
-}  // namespace aavio::io
+}  // namespace aavio::recording

@@ -1,4 +1,4 @@
-#include "aavio/io/ply.hpp"
+#include "aavio/recording/ply.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -11,7 +11,7 @@
 #include "aavio/common/format.hpp"
 #include "aavio/io/file_checks.hpp"
 
-namespace aavio::io {
+namespace aavio::recording {
 namespace {
 
 constexpr const char* kProperties[] = {"property float x",     "property float y",
@@ -171,7 +171,7 @@ Status PlyWriter::Close(const std::optional<Eigen::Matrix3d>& rotation) {
 }
 
 Expected<ColouredCloud> ReadPly(const std::string& path) {
-  AAVIO_RETURN_IF_ERROR(CheckRegularFile(path, "PLY point cloud"));
+  AAVIO_RETURN_IF_ERROR(io::CheckRegularFile(path, "PLY point cloud"));
   std::ifstream in(path, std::ios::binary);
   if (!in) return NotFound(path + ": cannot open");
   std::string line;
@@ -230,4 +230,4 @@ Expected<ColouredCloud> ReadPly(const std::string& path) {
   return cloud;
 }
 
-}  // namespace aavio::io
+}  // namespace aavio::recording

@@ -1,4 +1,4 @@
-#include "aavio/io/rosbag_file.hpp"
+#include "aavio/io/formats/rosbag/rosbag_file.hpp"
 
 #include <bzlib.h>
 

@@ -1,9 +1,10 @@
-#include "aavio/io/bag_streams.hpp"
+#include "aavio/io/formats/rosbag/bag_streams.hpp"
 
 #include <algorithm>
 #include <set>
 
-#include "aavio/io/rosbag_messages.hpp"
+#include "aavio/io/decoded_stream_impl.hpp"
+#include "aavio/io/formats/rosbag/rosbag_messages.hpp"
 
 namespace aavio::io {
 
@@ -164,10 +165,12 @@ struct BagStreamCore {
 
 }  // namespace
 
-struct BagEventStream::State : BagStreamCore<events::Event> {};
-struct BagImuStream::State : BagStreamCore<imu::ImuSample> {};
+struct BagEventDecoder : BagStreamCore<events::Event> {};
+template class DecodedStream<events::Event, BagEventDecoder>;
 
-BagEventStream::BagEventStream(std::unique_ptr<State> s) : s_(std::move(s)) {}
+struct BagImuDecoder : BagStreamCore<imu::ImuSample> {};
+template class DecodedStream<imu::ImuSample, BagImuDecoder>;
+
 BagEventStream::~BagEventStream() = default;
 
 Expected<std::unique_ptr<BagEventStream>> BagEventStream::Open(const std::string& path,
@@ -178,8 +181,8 @@ Expected<std::unique_ptr<BagEventStream>> BagEventStream::Open(const std::string
   Expected<std::set<std::uint32_t>> ids =
       TopicConnections(**bag, topic, rosbag::kEventArray, "an event array");
   if (!ids) return ids.status();
-  auto s = std::make_unique<State>();
-  State* raw = s.get();
+  auto s = std::make_unique<BagEventDecoder>();
+  BagEventDecoder* raw = s.get();
   s->decode = [raw](const rosbag::MessageView& m, std::vector<events::Event>* out) -> Status {
     rosbag::EventArrayHeader header;
     const std::size_t before = out->size();
@@ -213,23 +216,10 @@ Expected<std::unique_ptr<BagEventStream>> BagEventStream::Open(const std::string
   return std::unique_ptr<BagEventStream>(new BagEventStream(std::move(s)));
 }
 
-const StreamInfo& BagEventStream::info() const {
-  return s_->info;
-}
-Status BagEventStream::ReadUntil(TimeNs t_end_ns, std::vector<events::Event>* out) {
-  return s_->ReadUntil(t_end_ns, out);
-}
-Status BagEventStream::Seek(TimeNs t_ns) {
-  return s_->Seek(t_ns);
-}
-bool BagEventStream::AtEnd() const {
-  return s_->AtEnd();
-}
 std::uint64_t BagEventStream::message_count() const {
-  return s_->messages;
+  return decoder_->messages;
 }
 
-BagImuStream::BagImuStream(std::unique_ptr<State> s) : s_(std::move(s)) {}
 BagImuStream::~BagImuStream() = default;
 
 Expected<std::unique_ptr<BagImuStream>> BagImuStream::Open(const std::string& path,
@@ -245,8 +235,8 @@ Expected<std::unique_ptr<BagImuStream>> BagImuStream::Open(const std::string& pa
   }
   Expected<std::set<std::uint32_t>> ids = TopicConnections(**bag, topic, rosbag::kImu, "an IMU");
   if (!ids) return ids.status();
-  auto s = std::make_unique<State>();
-  State* raw = s.get();
+  auto s = std::make_unique<BagImuDecoder>();
+  BagImuDecoder* raw = s.get();
   s->decode = [raw](const rosbag::MessageView& m, std::vector<imu::ImuSample>* out) -> Status {
     imu::ImuSample sample;
     if (!rosbag::DecodeImu(m.data, &sample)) {
@@ -261,19 +251,6 @@ Expected<std::unique_ptr<BagImuStream>> BagImuStream::Open(const std::string& pa
   s->info.count = static_cast<std::int64_t>(s->messages);
   s->info.description = "bag IMU: " + path + " " + topic;
   return std::unique_ptr<BagImuStream>(new BagImuStream(std::move(s)));
-}
-
-const StreamInfo& BagImuStream::info() const {
-  return s_->info;
-}
-Status BagImuStream::ReadUntil(TimeNs t_end_ns, std::vector<imu::ImuSample>* out) {
-  return s_->ReadUntil(t_end_ns, out);
-}
-Status BagImuStream::Seek(TimeNs t_ns) {
-  return s_->Seek(t_ns);
-}
-bool BagImuStream::AtEnd() const {
-  return s_->AtEnd();
 }
 
 Expected<std::vector<geometry::StampedPose>> ReadBagPoses(const std::string& path,

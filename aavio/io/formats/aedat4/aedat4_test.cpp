@@ -1,4 +1,4 @@
-#include "aavio/io/aedat4.hpp"
+#include "aavio/io/formats/aedat4/aedat4.hpp"
 
 #include <gtest/gtest.h>
 #include <lz4frame.h>

@@ -1,4 +1,4 @@
-#include "aavio/io/text_streams.hpp"
+#include "aavio/io/formats/text/text_streams.hpp"
 
 #include <gtest/gtest.h>
 

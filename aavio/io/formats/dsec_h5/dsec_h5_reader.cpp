@@ -1,12 +1,13 @@
-#include "aavio/io/dsec_h5_reader.hpp"
+#include "aavio/io/formats/dsec_h5/dsec_h5_reader.hpp"
 
 #include <algorithm>
 #include <array>
 #include <filesystem>
 
 #include "aavio/common/format.hpp"
+#include "aavio/io/decoded_stream_impl.hpp"
 #include "aavio/io/file_checks.hpp"
-#include "aavio/io/hdf5_util.hpp"
+#include "aavio/io/formats/dsec_h5/hdf5_util.hpp"
 
 namespace aavio::io {
 
@@ -16,7 +17,7 @@ const char* kFields[4] = {"/events/x", "/events/y", "/events/p", "/events/t"};
 
 }  // namespace
 
-struct DsecH5EventStream::State {
+struct DsecH5Decoder {
   std::string path;
   StreamOptions options;
   StreamInfo info;
@@ -35,7 +36,13 @@ struct DsecH5EventStream::State {
   Status ReadRange(std::uint64_t begin, std::uint64_t n);
   Status ReadBlock();
   Expected<std::int64_t> ReadT(std::uint64_t index);
+
+  Status ReadUntil(TimeNs t_end_ns, std::vector<events::Event>* out);
+  Status Seek(TimeNs t_ns);
+  bool AtEnd() const { return next_index >= count && reorder.size() == 0; }
 };
+
+template class DecodedStream<events::Event, DsecH5Decoder>;
 
 namespace {
 
@@ -58,7 +65,7 @@ Status ReadSlab(hid_t dataset, hid_t mem_type, std::uint64_t begin, std::uint64_
 
 }  // namespace
 
-Status DsecH5EventStream::State::ReadRange(std::uint64_t begin, std::uint64_t n) {
+Status DsecH5Decoder::ReadRange(std::uint64_t begin, std::uint64_t n) {
   h5::SilenceErrorPrinting();  // HDF5's printing is per thread: this may be a reader's thread
   xs.resize(n);
   ys.resize(n);
@@ -75,7 +82,7 @@ Status DsecH5EventStream::State::ReadRange(std::uint64_t begin, std::uint64_t n)
   return Status::Ok();
 }
 
-Status DsecH5EventStream::State::ReadBlock() {
+Status DsecH5Decoder::ReadBlock() {
   const std::uint64_t n = std::min<std::uint64_t>(options.block_events, count - next_index);
   AAVIO_RETURN_IF_ERROR(ReadRange(next_index, n));
   // HDF5 would clamp a negative x to 0 when reading it as uint16; a polarity other than 0/1
@@ -127,7 +134,7 @@ Status DsecH5EventStream::State::ReadBlock() {
   return Status::Ok();
 }
 
-Expected<std::int64_t> DsecH5EventStream::State::ReadT(std::uint64_t index) {
+Expected<std::int64_t> DsecH5Decoder::ReadT(std::uint64_t index) {
   h5::SilenceErrorPrinting();
   std::int64_t t = 0;
   AAVIO_RETURN_IF_ERROR(
@@ -135,7 +142,6 @@ Expected<std::int64_t> DsecH5EventStream::State::ReadT(std::uint64_t index) {
   return t;
 }
 
-DsecH5EventStream::DsecH5EventStream(std::unique_ptr<State> state) : s_(std::move(state)) {}
 DsecH5EventStream::~DsecH5EventStream() = default;
 
 Expected<std::unique_ptr<DsecH5EventStream>> DsecH5EventStream::Open(const std::string& path,
@@ -150,8 +156,8 @@ Expected<std::unique_ptr<DsecH5EventStream>> DsecH5EventStream::Open(const std::
   // The whole open, and the first and last event of each dataset, in a child first.
   AAVIO_RETURN_IF_ERROR(h5::SurvivesInChild(path, [&] {
     Expected<std::unique_ptr<DsecH5EventStream>> probe = OpenHere(path, options);
-    if (probe.ok() && (*probe)->s_->count > 0) {
-      State& s = *(*probe)->s_;
+    if (probe.ok() && (*probe)->decoder_->count > 0) {
+      DsecH5Decoder& s = *(*probe)->decoder_;
       if (s.ReadRange(0, 1).ok()) (void)s.ReadRange(s.count - 1, 1);
     }
   }));
@@ -160,7 +166,7 @@ Expected<std::unique_ptr<DsecH5EventStream>> DsecH5EventStream::Open(const std::
 
 Expected<std::unique_ptr<DsecH5EventStream>> DsecH5EventStream::OpenHere(
     const std::string& path, const StreamOptions& options) {
-  auto s = std::make_unique<State>();
+  auto s = std::make_unique<DsecH5Decoder>();
   s->path = path;
   s->options = options;
   s->reorder = ReorderBuffer<events::Event>(options.max_reorder_ns);
@@ -274,47 +280,40 @@ Expected<std::unique_ptr<DsecH5EventStream>> DsecH5EventStream::OpenHere(
   return std::unique_ptr<DsecH5EventStream>(new DsecH5EventStream(std::move(s)));
 }
 
-const StreamInfo& DsecH5EventStream::info() const {
-  return s_->info;
-}
 const std::vector<std::uint64_t>& DsecH5EventStream::ms_to_idx() const {
-  return s_->ms_to_idx;
+  return decoder_->ms_to_idx;
 }
 std::int64_t DsecH5EventStream::t_offset_us() const {
-  return s_->t_offset_us;
+  return decoder_->t_offset_us;
 }
 
-Status DsecH5EventStream::ReadUntil(TimeNs t_end_ns, std::vector<events::Event>* out) {
-  while (!s_->reorder.CanRelease(t_end_ns) && s_->next_index < s_->count) {
-    AAVIO_RETURN_IF_ERROR(s_->ReadBlock());
+Status DsecH5Decoder::ReadUntil(TimeNs t_end_ns, std::vector<events::Event>* out) {
+  while (!reorder.CanRelease(t_end_ns) && next_index < count) {
+    AAVIO_RETURN_IF_ERROR(ReadBlock());
   }
-  s_->reorder.Release(t_end_ns, out);
+  reorder.Release(t_end_ns, out);
   return Status::Ok();
 }
 
-bool DsecH5EventStream::AtEnd() const {
-  return s_->next_index >= s_->count && s_->reorder.size() == 0;
-}
-
-Status DsecH5EventStream::Seek(TimeNs t_ns) {
+Status DsecH5Decoder::Seek(TimeNs t_ns) {
   // Start early by the reorder window so late events at or after t_ns are not lost.
-  const TimeNs from_ns = t_ns - s_->options.max_reorder_ns;
-  const std::int64_t rel_us = from_ns / kNsPerUs - s_->t_offset_us - 1;
+  const TimeNs from_ns = t_ns - options.max_reorder_ns;
+  const std::int64_t rel_us = from_ns / kNsPerUs - t_offset_us - 1;
   std::uint64_t lo = 0;
-  std::uint64_t hi = s_->count;
-  if (rel_us > 0 && !s_->ms_to_idx.empty()) {
+  std::uint64_t hi = count;
+  if (rel_us > 0 && !ms_to_idx.empty()) {
     // ms_to_idx[ms] = first event with t >= 1000 ms: a bracket for the binary search.
     const std::uint64_t ms = static_cast<std::uint64_t>(rel_us) / 1000;
-    if (ms < s_->ms_to_idx.size()) {
-      lo = s_->ms_to_idx[ms];
-      if (ms + 1 < s_->ms_to_idx.size()) hi = std::min(hi, s_->ms_to_idx[ms + 1]);
+    if (ms < ms_to_idx.size()) {
+      lo = ms_to_idx[ms];
+      if (ms + 1 < ms_to_idx.size()) hi = std::min(hi, ms_to_idx[ms + 1]);
     } else {
-      lo = s_->ms_to_idx.back();
+      lo = ms_to_idx.back();
     }
   }
   while (lo < hi) {  // first index with t >= rel_us
     const std::uint64_t mid = lo + (hi - lo) / 2;
-    Expected<std::int64_t> t = s_->ReadT(mid);
+    Expected<std::int64_t> t = ReadT(mid);
     if (!t) return t.status();
     if (*t < rel_us) {
       lo = mid + 1;
@@ -322,8 +321,8 @@ Status DsecH5EventStream::Seek(TimeNs t_ns) {
       hi = mid;
     }
   }
-  s_->next_index = lo;
-  s_->reorder.Reset(t_ns);
+  next_index = lo;
+  reorder.Reset(t_ns);
   return Status::Ok();
 }
 
