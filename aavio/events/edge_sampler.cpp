@@ -108,6 +108,36 @@ std::vector<int> BlockQuotas(const std::vector<int>& candidates, const EdgeSampl
   return quota;
 }
 
+namespace {
+
+// Takes the k candidates of highest count: all above the threshold count c*, and a random part of
+// those at c* (`tied` is scratch).
+template <typename Take>
+void TakeHighest(const std::vector<std::uint32_t>& candidates, const std::uint8_t* counts, int k,
+                 std::mt19937_64& rng, std::vector<std::uint32_t>* tied, Take&& take) {
+  std::array<int, 256> histogram{};
+  for (const std::uint32_t pixel : candidates)
+    ++histogram[counts[pixel]];
+  int c_star = 255, above = 0;
+  while (above + histogram[c_star] < k)
+    above += histogram[c_star--];
+  tied->clear();
+  for (const std::uint32_t pixel : candidates) {
+    if (counts[pixel] > c_star) {
+      take(pixel);
+    } else if (counts[pixel] == c_star) {
+      tied->push_back(pixel);
+    }
+  }
+  const std::size_t need = static_cast<std::size_t>(k - above);
+  for (std::size_t i = 0; i < need; ++i) {  // partial Fisher–Yates
+    std::swap((*tied)[i], (*tied)[i + Below(rng, tied->size() - i)]);
+    take((*tied)[i]);
+  }
+}
+
+}  // namespace
+
 std::vector<EdgeSample> SampleAaMap(const AaMap& map, const geometry::RectificationMaps& maps,
                                     const EdgeSamplingConfig& config, std::uint64_t seed) {
   const int width = map.counts.cols;
@@ -151,28 +181,7 @@ std::vector<EdgeSample> SampleAaMap(const AaMap& map, const geometry::Rectificat
   }
   std::vector<std::uint32_t> tied;
   for (std::size_t b = 0; b < candidates.size(); ++b) {
-    const int k = quota[b];
-    if (k <= 0) continue;
-    // The k highest counts: all above the threshold count c*, and a random part of those at c*.
-    std::array<int, 256> histogram{};
-    for (const std::uint32_t pixel : candidates[b])
-      ++histogram[counts[pixel]];
-    int c_star = 255, above = 0;
-    while (above + histogram[c_star] < k)
-      above += histogram[c_star--];
-    tied.clear();
-    for (const std::uint32_t pixel : candidates[b]) {
-      if (counts[pixel] > c_star) {
-        take(pixel);
-      } else if (counts[pixel] == c_star) {
-        tied.push_back(pixel);
-      }
-    }
-    const std::size_t need = static_cast<std::size_t>(k - above);
-    for (std::size_t i = 0; i < need; ++i) {  // partial Fisher–Yates
-      std::swap(tied[i], tied[i + Below(rng, tied.size() - i)]);
-      take(tied[i]);
-    }
+    if (quota[b] > 0) TakeHighest(candidates[b], counts, quota[b], rng, &tied, take);
   }
   return samples;
 }

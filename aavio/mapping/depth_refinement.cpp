@@ -151,25 +151,19 @@ double JacobianNorm2(const Residual& f, double rho, double h, const Evaluation& 
   return jtj / (h * h);
 }
 
-bool RefineOne(const RefinementInput& in, const Match& m, const RectifiedStereo& stereo,
-               const DepthRefinementConfig& c, const TemporalCulls& t, InvDepthRange range,
-               DepthPoint* out) {
-  const Residual f(in, m, stereo, kPatchWidth, kPatchHeight);
-  if (!f.ok()) return false;
-  const double nu = c.student_t_nu, s2_t = c.student_t_scale * c.student_t_scale;
+// Minimises the Student-t cost of ρ from `rho` by Levenberg–Marquardt, re-estimating the robust
+// scale after each accepted step (IRLS). Returns ρ; `*e` points at its evaluation (one of
+// `buffers`) and `*s2` is its scale.
+double MinimiseCost(const Residual& f, double rho, double nu, double s2_t, Evaluation (&buffers)[2],
+                    const Evaluation** e, double* s2) {
   float raw[kMaxPatch];
   const std::size_t n = static_cast<std::size_t>(f.size());
-  double rho = m.rho;
   // The robust scale from the residuals at ρ (IRLS), then weights with that scale.
-  auto scale_at = [&](double r) {
-    f(r, raw);
-    return StudentTScale2(std::span<const float>(raw, n), nu, s2_t);
-  };
-  double s2 = scale_at(rho);
-  Evaluation buffers[2];  // the current evaluation and a trial, swapped on success
-  int current = 0;
+  f(rho, raw);
+  *s2 = StudentTScale2(std::span<const float>(raw, n), nu, s2_t);
+  int current = 0;  // the current evaluation and a trial, swapped on success
   Evaluation* e_ptr = &buffers[0];
-  Weigh(raw, f.size(), nu, s2, e_ptr);  // scale_at left r(ρ) in raw
+  Weigh(raw, f.size(), nu, *s2, e_ptr);
   double jtj = 0.0, jtr = 0.0;
   double lambda = 1e-3;
   for (int iteration = 0; iteration < kMaxIterations; ++iteration) {
@@ -183,7 +177,7 @@ bool RefineOne(const RefinementInput& in, const Match& m, const RectifiedStereo&
       const double candidate = rho + step;
       if (candidate > 0.0) {
         Evaluation& trial = buffers[1 - current];
-        Evaluate(f, candidate, nu, s2, &trial, raw);
+        Evaluate(f, candidate, nu, *s2, &trial, raw);
         if (trial.cost < e_ptr->cost) {
           rho = candidate;
           current = 1 - current;
@@ -198,15 +192,17 @@ bool RefineOne(const RefinementInput& in, const Match& m, const RectifiedStereo&
     if (!improved || std::abs(step) < 1e-3 * rho) break;
     // Re-estimate the scale where we are now (IRLS) and re-weigh; the accepted trial left r(ρ)
     // in raw.
-    s2 = StudentTScale2(std::span<const float>(raw, n), nu, s2_t);
-    Weigh(raw, f.size(), nu, s2, e_ptr);
+    *s2 = StudentTScale2(std::span<const float>(raw, n), nu, s2_t);
+    Weigh(raw, f.size(), nu, *s2, e_ptr);
   }
-  jtj = JacobianNorm2(f, rho, std::max(1e-7, 1e-3 * rho), *e_ptr, &jtr);
-  if (!(rho > 0.001) || jtj <= 0.0) return false;
-  const double sigma_t2 = nu / (nu - 2.0) * s2_t;
-  const double variance = sigma_t2 / jtj;
-  // Culling (docs/mapping.md); temporal residuals are on the AA maps, which may have their own
-  // thresholds.
+  *e = e_ptr;
+  return rho;
+}
+
+// The culling (docs/mapping.md): by σ_ρ, by σ_ρ / ρ, by the cost and by the depth range. Temporal
+// residuals are on the AA maps, which may have their own thresholds.
+bool Kept(const Match& m, const DepthRefinementConfig& c, const TemporalCulls& t,
+          InvDepthRange range, double rho, double variance, double cost) {
   const bool temporal = m.kind == StereoKind::kTemporal;
   const double max_stddev =
       temporal && t.max_inv_depth_stddev > 0.0 ? t.max_inv_depth_stddev : c.max_inv_depth_stddev;
@@ -216,14 +212,32 @@ bool RefineOne(const RefinementInput& in, const Match& m, const RectifiedStereo&
   const double sigma = std::sqrt(variance);
   if (sigma > max_stddev) return false;
   if (c.max_relative_stddev > 0.0 && sigma > c.max_relative_stddev * rho) return false;
-  if (e_ptr->cost > residual * residual * area) return false;
-  if (!range.Contains(rho)) return false;
+  if (cost > residual * residual * area) return false;
+  return range.Contains(rho);
+}
+
+bool RefineOne(const RefinementInput& in, const Match& m, const RectifiedStereo& stereo,
+               const DepthRefinementConfig& c, const TemporalCulls& t, InvDepthRange range,
+               DepthPoint* out) {
+  const Residual f(in, m, stereo, kPatchWidth, kPatchHeight);
+  if (!f.ok()) return false;
+  const double nu = c.student_t_nu, s2_t = c.student_t_scale * c.student_t_scale;
+  Evaluation buffers[2];
+  const Evaluation* e = nullptr;
+  double s2 = 0.0;
+  const double rho = MinimiseCost(f, m.rho, nu, s2_t, buffers, &e, &s2);
+  double jtr = 0.0;
+  const double jtj = JacobianNorm2(f, rho, std::max(1e-7, 1e-3 * rho), *e, &jtr);
+  if (!(rho > 0.001) || jtj <= 0.0) return false;
+  const double sigma_t2 = nu / (nu - 2.0) * s2_t;
+  const double variance = sigma_t2 / jtj;
+  if (!Kept(m, c, t, range, rho, variance, e->cost)) return false;
   out->u = m.u;
   out->v = m.v;
   out->rho = rho;
   out->nu = nu;
   out->s2 = variance * (nu - 2.0) / nu;
-  out->residual = e_ptr->cost;
+  out->residual = e->cost;
   out->age = 0;
   out->kind = m.kind;
   out->near_horizontal = m.near_horizontal;

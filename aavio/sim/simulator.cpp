@@ -138,69 +138,20 @@ cv::Mat TopView(const Scene& scene, const std::vector<geometry::StampedPose>& pa
   return image;
 }
 
-}  // namespace
+// Ground-truth depth of the rectified left camera at a fixed rate: DSEC-style disparity PNGs,
+// float depth TIFFs and edge labels, with their timestamps.
+class DepthTruthWriter {
+ public:
+  DepthTruthWriter(const SimulationWorld& world, const fs::path& out, bool preview)
+      : world_(world),
+        renderer_(*geometry::CameraModel::Create(RectifiedLeft(world.rig))),
+        folder_(out / "depth"),
+        preview_(preview ? out / "preview" / "gt_depth.png" : fs::path()) {}
 
-Expected<SimulationReport> Simulate(const SimulationRequest& request,
-                                    const std::function<void(double)>& progress) {
-  const auto wall_start = std::chrono::steady_clock::now();
-  if (request.out_dir.empty()) return InvalidArgument("an output folder is needed (--out)");
-  AAVIO_RETURN_IF_ERROR(request.Validate());
-  Expected<SimulationWorld> built = BuildSimulationWorld(request);
-  if (!built) return built.status();
-  const SimulationWorld& world = *built;
-  const geometry::StereoRig& rig = world.rig;
-  const SimulationPreset& preset = world.preset;
-  const MotionSpline& spline = world.spline;
-
-  const fs::path out(request.out_dir);
-  const std::vector<const char*> outputs = SimulationOutputs();
-  AAVIO_RETURN_IF_ERROR(io::PrepareOutputFolder(
-      request.out_dir, {.outputs = outputs, .overwrite = request.overwrite}));
-  std::error_code ec;
-  fs::create_directories(out / "depth", ec);
-  if (ec) return IoError(request.out_dir + ": cannot create the folder (" + ec.message() + ")");
-  // The calibration the odometry is given: the true rig, or the rig with the sensor's calibration
-  // errors (then the true one is kept beside it for reference).
-  AAVIO_RETURN_IF_ERROR(io::WriteEsvoCalibration((out / "calibration").string(),
-                                                 world.calibration_rig, "aavio_" + preset.name));
-  if (world.sensor.rig.PerturbsCalibration()) {
-    AAVIO_RETURN_IF_ERROR(io::WriteEsvoCalibration((out / "calibration_true").string(), rig,
-                                                   "aavio_" + preset.name + "_true"));
-  }
-  AAVIO_RETURN_IF_ERROR(WriteScene((out / "scene.txt").string(), world.scene));
-
-  Expected<io::SequenceFormat> format = io::ParseSequenceFormat(request.format);
-  if (!format) return format.status();
-  Expected<std::unique_ptr<io::SequenceWriter>> writer = io::SequenceWriter::Create(
-      request.out_dir, {.format = *format, .width = rig.width(), .height = rig.height()});
-  if (!writer) return writer.status();
-  io::SequenceWriter& sink = **writer;
-
-  geometry::CameraIntrinsics rect_in{rig.width(),
-                                     rig.height(),
-                                     rig.focal_px(),
-                                     rig.focal_px(),
-                                     rig.cx_left(),
-                                     rig.cy(),
-                                     geometry::DistortionModel::kNone,
-                                     {}};
-  const Renderer depth_renderer(*geometry::CameraModel::Create(rect_in));
-  StereoEventSimulation simulation(world, request.seed);
-  const TimeNs t_begin = spline.t_begin_ns(), t_end = spline.t_end_ns();
-  std::vector<events::Event> batch[2];
-  std::vector<std::int64_t> pixel_counts(static_cast<std::size_t>(rig.width()) * rig.height(), 0);
-  SimulationReport report;
-  report.body_to_camera = world.motion.body_to_camera;
-  report.path_smoothing = world.motion.smoothing;
-  report.world_effects = world.world_effects.Describe();
-
-  // Ground-truth depth: rectified left camera at a fixed rate, as DSEC-style disparity PNGs.
-  const TimeNs depth_step = SecondsToNs(1.0 / preset.depth_rate_hz);
-  TimeNs next_depth = t_begin;
-  std::string depth_stamps = "# t[s] index\n";
-  auto write_depth = [&](TimeNs t) -> Status {
+  Status Write(TimeNs t) {
+    const geometry::StereoRig& rig = world_.rig;
     RenderedImage d;
-    depth_renderer.Render(world.scene, spline.Pose(t), t, &d);
+    renderer_.Render(world_.scene, world_.spline.Pose(t), t, &d);
     cv::Mat disparity(rig.height(), rig.width(), CV_16UC1, cv::Scalar(0));
     cv::Mat depth(rig.height(), rig.width(), CV_32FC1, cv::Scalar(0));
     const double offset = rig.cx_left() - rig.cx_right();
@@ -214,75 +165,210 @@ Expected<SimulationReport> Simulate(const SimulationRequest& request,
             static_cast<std::uint16_t>(std::lround(disp * 256.0));
       }
     }
-    const std::string index = StrFormat("%06lld", static_cast<long long>(report.depth_maps));
-    if (!cv::imwrite((out / "depth" / ("disparity_" + index + ".png")).string(), disparity) ||
-        !cv::imwrite((out / "depth" / ("depth_" + index + ".tiff")).string(), depth) ||
-        !cv::imwrite((out / "depth" / ("edges_" + index + ".png")).string(),
+    const std::string index = StrFormat("%06lld", static_cast<long long>(count_));
+    if (!cv::imwrite((folder_ / ("disparity_" + index + ".png")).string(), disparity) ||
+        !cv::imwrite((folder_ / ("depth_" + index + ".tiff")).string(), depth) ||
+        !cv::imwrite((folder_ / ("edges_" + index + ".png")).string(),
                      EdgeLabels(d, EdgeTruthConfig{}))) {
-      return IoError((out / "depth").string() + ": cannot write the ground-truth maps");
+      return IoError(folder_.string() + ": cannot write the ground-truth maps");
     }
-    if (request.preview && report.depth_maps == 0) {
-      cv::imwrite((out / "preview" / "gt_depth.png").string(),
-                  DepthColour(d.depth_m, rig.width(), rig.height()));
-    }
-    depth_stamps += FormatSecondsNs(t) + " " + index + "\n";
-    ++report.depth_maps;
+    if (!preview_.empty() && count_ == 0)
+      cv::imwrite(preview_.string(), DepthColour(d.depth_m, rig.width(), rig.height()));
+    stamps_ += FormatSecondsNs(t) + " " + index + "\n";
+    ++count_;
     return Status::Ok();
-  };
-  if (request.preview) fs::create_directories(out / "preview");
+  }
+  /// Writes the timestamps; returns how many maps were written.
+  Expected<std::int64_t> Finish() {
+    AAVIO_RETURN_IF_ERROR(io::WriteTextFile((folder_ / "timestamps.txt").string(), stamps_));
+    return count_;
+  }
 
+ private:
+  static geometry::CameraIntrinsics RectifiedLeft(const geometry::StereoRig& rig) {
+    return {rig.width(),
+            rig.height(),
+            rig.focal_px(),
+            rig.focal_px(),
+            rig.cx_left(),
+            rig.cy(),
+            geometry::DistortionModel::kNone,
+            {}};
+  }
+
+  const SimulationWorld& world_;
+  const Renderer renderer_;
+  fs::path folder_;
+  fs::path preview_;
+  std::string stamps_ = "# t[s] index\n";
+  std::int64_t count_ = 0;
+};
+
+// The folder, the calibration the odometry is given (the true rig, or the rig with the sensor's
+// calibration errors, then with the true one beside it for reference) and the scene.
+Status PrepareFolder(const SimulationRequest& request, const SimulationWorld& world) {
+  const fs::path out(request.out_dir);
+  const std::vector<const char*> outputs = SimulationOutputs();
+  AAVIO_RETURN_IF_ERROR(io::PrepareOutputFolder(
+      request.out_dir, {.outputs = outputs, .overwrite = request.overwrite}));
+  std::error_code ec;
+  fs::create_directories(out / "depth", ec);
+  if (ec) return IoError(request.out_dir + ": cannot create the folder (" + ec.message() + ")");
+  const std::string name = "aavio_" + world.preset.name;
+  AAVIO_RETURN_IF_ERROR(
+      io::WriteEsvoCalibration((out / "calibration").string(), world.calibration_rig, name));
+  if (world.sensor.rig.PerturbsCalibration()) {
+    AAVIO_RETURN_IF_ERROR(
+        io::WriteEsvoCalibration((out / "calibration_true").string(), world.rig, name + "_true"));
+  }
+  AAVIO_RETURN_IF_ERROR(WriteScene((out / "scene.txt").string(), world.scene));
+  if (request.preview) fs::create_directories(out / "preview");
+  return Status::Ok();
+}
+
+// What the event loop gathers beside the files.
+struct EventTally {
+  std::vector<std::int64_t> pixel_counts;  // left camera
+  std::vector<events::Event> preview[2];   // 20 ms around the middle
+};
+
+// Streams both cameras' events to `sink`, and the ground-truth depth maps between them.
+Status WriteEvents(const SimulationRequest& request, const SimulationWorld& world,
+                   StereoEventSimulation* simulation, io::SequenceWriter* sink,
+                   DepthTruthWriter* depth, const std::function<void(double)>& progress,
+                   SimulationReport* report, EventTally* tally) {
+  const geometry::StereoRig& rig = world.rig;
+  const TimeNs t_begin = world.spline.t_begin_ns(), t_end = world.spline.t_end_ns();
+  tally->pixel_counts.assign(static_cast<std::size_t>(rig.width()) * rig.height(), 0);
+  const TimeNs depth_step = SecondsToNs(1.0 / world.preset.depth_rate_hz);
+  TimeNs next_depth = t_begin;
+  // The right camera's clock runs ahead of the left's by the rig's offset.
   const TimeNs right_clock_offset_ns =
       static_cast<TimeNs>(std::llround(world.sensor.rig.right_clock_offset_us * 1e3));
-  std::vector<events::Event> preview_events[2];
   const TimeNs preview_at = t_begin + (t_end - t_begin) / 2;
+  std::vector<events::Event> batch[2];
   TimeNs t = t_begin;
   while (t < t_end) {
     batch[0].clear();
     batch[1].clear();
-    const TimeNs t_next = simulation.Step(t_end, &batch[0], &batch[1]);
-    // The right camera's clock runs ahead of the left's by the rig's offset.
+    const TimeNs t_next = simulation->Step(t_end, &batch[0], &batch[1]);
     for (events::Event& e : batch[1])
       e.t_ns += right_clock_offset_ns;
     DropDisturbedEvents(request.disturbances, t_begin, batch);
     for (int side = 0; side < 2; ++side)
-      AAVIO_RETURN_IF_ERROR(sink.WriteEvents(side == 0, batch[side]));
+      AAVIO_RETURN_IF_ERROR(sink->WriteEvents(side == 0, batch[side]));
     for (const events::Event& e : batch[0])
-      ++pixel_counts[static_cast<std::size_t>(e.y) * rig.width() + e.x];
-    report.events_left += static_cast<std::int64_t>(batch[0].size());
-    report.events_right += static_cast<std::int64_t>(batch[1].size());
+      ++tally->pixel_counts[static_cast<std::size_t>(e.y) * rig.width() + e.x];
+    report->events_left += static_cast<std::int64_t>(batch[0].size());
+    report->events_right += static_cast<std::int64_t>(batch[1].size());
     if (request.preview && t_next > preview_at - 20 * kNsPerMs && t <= preview_at) {
       for (int side = 0; side < 2; ++side) {
-        preview_events[side].insert(preview_events[side].end(), batch[side].begin(),
+        tally->preview[side].insert(tally->preview[side].end(), batch[side].begin(),
                                     batch[side].end());
       }
     }
     while (next_depth <= t_next) {
-      AAVIO_RETURN_IF_ERROR(write_depth(next_depth));
+      AAVIO_RETURN_IF_ERROR(depth->Write(next_depth));
       next_depth += depth_step;
     }
-    ++report.render_steps;
+    ++report->render_steps;
     t = t_next;
     if (progress) progress(NsToSeconds(t - t_begin) / std::max(1e-9, NsToSeconds(t_end - t_begin)));
   }
-  AAVIO_RETURN_IF_ERROR(
-      io::WriteTextFile((out / "depth" / "timestamps.txt").string(), depth_stamps));
+  return Status::Ok();
+}
 
-  // IMU through the extrinsic (identity if the calibration has none) and ground-truth poses.
+// The IMU through the extrinsic (identity if the calibration has none), on its own clock, and
+// the ground-truth poses; returns the poses.
+Expected<std::vector<geometry::StampedPose>> WriteImuAndPoses(const SimulationRequest& request,
+                                                              const SimulationWorld& world,
+                                                              io::SequenceWriter* sink,
+                                                              SimulationReport* report) {
+  const MotionSpline& spline = world.spline;
   const geometry::RigidTransform T_imu_rect =
-      rig.T_imu_rect_left().value_or(geometry::RigidTransform());
+      world.rig.T_imu_rect_left().value_or(geometry::RigidTransform());
   Expected<std::vector<imu::ImuSample>> imu = SynthesizeImu(
-      spline, T_imu_rect, world.motion.gravity_world, preset.imu, request.seed * 2 + 13);
+      spline, T_imu_rect, world.motion.gravity_world, world.preset.imu, request.seed * 2 + 13);
   if (!imu) return imu.status();
   const TimeNs imu_offset_ns =
       static_cast<TimeNs>(std::llround(world.sensor.rig.imu_time_offset_ms * 1e6));
   for (imu::ImuSample& sample : *imu)
     sample.t_ns += imu_offset_ns;
   std::vector<geometry::StampedPose> gt;
-  const TimeNs pose_step = SecondsToNs(1.0 / preset.pose_rate_hz);
-  for (TimeNs tp = t_begin; tp <= t_end; tp += pose_step)
+  const TimeNs pose_step = SecondsToNs(1.0 / world.preset.pose_rate_hz);
+  for (TimeNs tp = spline.t_begin_ns(); tp <= spline.t_end_ns(); tp += pose_step)
     gt.push_back({tp, spline.Pose(tp)});
-  AAVIO_RETURN_IF_ERROR(sink.WriteImu(*imu));
-  AAVIO_RETURN_IF_ERROR(sink.WritePoses(gt));
+  AAVIO_RETURN_IF_ERROR(sink->WriteImu(*imu));
+  AAVIO_RETURN_IF_ERROR(sink->WritePoses(gt));
+  report->imu_samples = static_cast<std::int64_t>(imu->size());
+  return gt;
+}
+
+void WritePreviews(const fs::path& out, const SimulationWorld& world, const EventTally& tally,
+                   const std::vector<geometry::StampedPose>& gt) {
+  for (int side = 0; side < 2; ++side) {
+    cv::imwrite((out / "preview" / (side == 0 ? "events_left.png" : "events_right.png")).string(),
+                EventFrame(tally.preview[side], world.rig.width(), world.rig.height()));
+  }
+  cv::imwrite((out / "preview" / "top_view.png").string(),
+              TopView(world.scene, gt, world.T_world_canonical));
+}
+
+// The report's rates and the sensor's counts.
+void Summarise(const SimulationWorld& world, const StereoEventSimulation& simulation,
+               EventTally* tally, SimulationReport* report) {
+  report->body_to_camera = world.motion.body_to_camera;
+  report->path_smoothing = world.motion.smoothing;
+  report->world_effects = world.world_effects.Describe();
+  report->duration_s = NsToSeconds(world.spline.t_end_ns() - world.spline.t_begin_ns());
+  report->noise_events =
+      simulation.generator(0).noise_events() + simulation.generator(1).noise_events();
+  report->dropped_events =
+      simulation.generator(0).dropped_events() + simulation.generator(1).dropped_events();
+  report->sensor = world.sensor.name;
+  report->mean_rate_ev_s =
+      static_cast<double>(report->events_left) / std::max(report->duration_s, 1e-9);
+  std::vector<std::int64_t>& counts = tally->pixel_counts;
+  std::sort(counts.begin(), counts.end());
+  report->pixel_rate_median_hz =
+      static_cast<double>(counts[counts.size() / 2]) / report->duration_s;
+  report->pixel_rate_p99_hz =
+      static_cast<double>(counts[counts.size() * 99 / 100]) / report->duration_s;
+}
+
+}  // namespace
+
+Expected<SimulationReport> Simulate(const SimulationRequest& request,
+                                    const std::function<void(double)>& progress) {
+  const auto wall_start = std::chrono::steady_clock::now();
+  if (request.out_dir.empty()) return InvalidArgument("an output folder is needed (--out)");
+  AAVIO_RETURN_IF_ERROR(request.Validate());
+  Expected<SimulationWorld> built = BuildSimulationWorld(request);
+  if (!built) return built.status();
+  const SimulationWorld& world = *built;
+  AAVIO_RETURN_IF_ERROR(PrepareFolder(request, world));
+
+  const fs::path out(request.out_dir);
+  Expected<io::SequenceFormat> format = io::ParseSequenceFormat(request.format);
+  if (!format) return format.status();
+  Expected<std::unique_ptr<io::SequenceWriter>> writer = io::SequenceWriter::Create(
+      request.out_dir,
+      {.format = *format, .width = world.rig.width(), .height = world.rig.height()});
+  if (!writer) return writer.status();
+  io::SequenceWriter& sink = **writer;
+
+  SimulationReport report;
+  EventTally tally;
+  DepthTruthWriter depth(world, out, request.preview);
+  StereoEventSimulation simulation(world, request.seed);
+  AAVIO_RETURN_IF_ERROR(
+      WriteEvents(request, world, &simulation, &sink, &depth, progress, &report, &tally));
+  Expected<std::int64_t> depth_maps = depth.Finish();
+  if (!depth_maps) return depth_maps.status();
+  report.depth_maps = *depth_maps;
+  Expected<std::vector<geometry::StampedPose>> gt =
+      WriteImuAndPoses(request, world, &sink, &report);
+  if (!gt) return gt.status();
 
   io::SequenceDescription d;
   d.name = fs::absolute(out).lexically_normal().filename().string();
@@ -291,30 +377,9 @@ Expected<SimulationReport> Simulate(const SimulationRequest& request,
   d.gt_depth = (out / "depth").string();
   report.sequence_yaml = (out / "sequence.yaml").string();
   AAVIO_RETURN_IF_ERROR(io::WriteSequenceYaml(report.sequence_yaml, d));
+  if (request.preview) WritePreviews(out, world, tally, *gt);
 
-  if (request.preview) {
-    for (int side = 0; side < 2; ++side) {
-      cv::imwrite((out / "preview" / (side == 0 ? "events_left.png" : "events_right.png")).string(),
-                  EventFrame(preview_events[side], rig.width(), rig.height()));
-    }
-    cv::imwrite((out / "preview" / "top_view.png").string(),
-                TopView(world.scene, gt, world.T_world_canonical));
-  }
-
-  report.duration_s = NsToSeconds(t_end - t_begin);
-  report.imu_samples = static_cast<std::int64_t>(imu->size());
-  report.noise_events =
-      simulation.generator(0).noise_events() + simulation.generator(1).noise_events();
-  report.dropped_events =
-      simulation.generator(0).dropped_events() + simulation.generator(1).dropped_events();
-  report.sensor = world.sensor.name;
-  report.mean_rate_ev_s =
-      static_cast<double>(report.events_left) / std::max(report.duration_s, 1e-9);
-  std::sort(pixel_counts.begin(), pixel_counts.end());
-  report.pixel_rate_median_hz =
-      static_cast<double>(pixel_counts[pixel_counts.size() / 2]) / report.duration_s;
-  report.pixel_rate_p99_hz =
-      static_cast<double>(pixel_counts[pixel_counts.size() * 99 / 100]) / report.duration_s;
+  Summarise(world, simulation, &tally, &report);
   report.wall_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   return report;
