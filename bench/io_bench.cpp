@@ -2,14 +2,16 @@
 // (issue: ≥ 30 M events/s from DSEC h5, ≥ 20 M events/s from an lz4 bag).
 // The files are written once per run by aavio's writers into $TMPDIR: 10 M events of a
 // DSEC-like stream (640x480, ~5 M ev/s, µs timestamps, blosc/zstd/bit-shuffle; lz4 bag in 1 ms
-// packets).
+// packets; Prophesee RAW EVT 2.0, encoded here as Metavision writes it).
 #include <benchmark/benchmark.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <random>
 
 #include "aavio/io/formats/dsec_h5/dsec_h5_reader.hpp"
 #include "aavio/io/formats/dsec_h5/dsec_h5_writer.hpp"
+#include "aavio/io/formats/prophesee_raw/prophesee_raw.hpp"
 #include "aavio/io/formats/rosbag/bag_streams.hpp"
 #include "aavio/io/formats/rosbag/bag_writer.hpp"
 
@@ -37,6 +39,29 @@ std::vector<Event> MakeEvents(std::size_t n) {
   return events;
 }
 
+// EVT 2.0: a TIME_HIGH word (type 8, t[33:6] µs) whenever the upper bits change, then one CD word
+// per event (type 0 OFF / 1 ON, t[5:0] in bits 27..22, x in 21..11, y in 10..0), little-endian.
+void WriteEvt2(const std::string& path, const std::vector<Event>& events) {
+  std::FILE* f = std::fopen(path.c_str(), "wb");
+  if (!f) return;
+  std::fputs("% evt 2.0\n% format EVT2;height=480;width=640\n% end\n", f);
+  std::vector<std::uint32_t> words;
+  words.reserve(events.size() + events.size() / 16);
+  std::int64_t high = -1;
+  for (const Event& e : events) {
+    const std::int64_t us = e.t_ns / 1000;
+    if ((us >> 6) != high) {
+      high = us >> 6;
+      words.push_back((8u << 28) | static_cast<std::uint32_t>(high & 0x0FFFFFFF));
+    }
+    words.push_back((static_cast<std::uint32_t>(e.polarity ? 1 : 0) << 28) |
+                    (static_cast<std::uint32_t>(us & 63) << 22) |
+                    (static_cast<std::uint32_t>(e.x) << 11) | e.y);
+  }
+  std::fwrite(words.data(), sizeof(std::uint32_t), words.size(), f);
+  std::fclose(f);
+}
+
 const std::string& Dir() {
   static const std::string dir = [] {
     const auto d = std::filesystem::temp_directory_path() / "aavio_io_bench";
@@ -54,6 +79,7 @@ const std::string& Dir() {
       (void)(*writer)->WriteEvents("/davis/left/events", events);
       (void)(*writer)->Close();
     }
+    WriteEvt2((d / "events.raw").string(), events);
     return d.string();
   }();
   return dir;
@@ -91,6 +117,12 @@ void BM_DecodeBagLz4(benchmark::State& state) {
   });
 }
 BENCHMARK(BM_DecodeBagLz4)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_DecodePropheseeRaw(benchmark::State& state) {
+  const std::string path = Dir() + "/events.raw";
+  Decode(state, [&] { return std::move(*aavio::io::PropheseeRawEventStream::Open(path, {})); });
+}
+BENCHMARK(BM_DecodePropheseeRaw)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 

@@ -83,13 +83,19 @@ class ReorderBuffer {
 
   /// Adds an element; `where` describes its position for the error message.
   Status Push(const T& element, std::string_view where_if_error) {
+    return PushDescribed(element, [where_if_error] { return where_if_error; });
+  }
+  /// Push for a reader whose position text costs to build: `where()` (returning the text) is
+  /// called only for an element out of time order.
+  template <typename Where>
+  Status PushDescribed(const T& element, Where&& where) {
     // The common case inline: in time order after everything pushed and released so far.
     if (has_newest_ && element.t_ns >= newest_ns_ && element.t_ns >= released_until_ns_) {
       newest_ns_ = element.t_ns;
       pending_.push_back(element);
       return Status::Ok();
     }
-    return PushOutOfOrder(element, where_if_error);
+    return PushOutOfOrder(element, where());
   }
   /// Appends the leading elements that are in time order after everything pushed and released so
   /// far, in one copy; returns how many (the caller pushes the next one with Push, which reorders

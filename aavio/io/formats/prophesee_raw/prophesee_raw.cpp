@@ -154,7 +154,8 @@ struct PropheseeRawDecoder {
     Status pushed = Status::Ok();
     while (!reorder.CanRelease(t_end_ns) && !exhausted && pushed.ok()) {
       AAVIO_RETURN_IF_ERROR(NextBlock([&](const events::Event& e, std::int64_t at) {
-        if (pushed.ok()) pushed = reorder.Push(e, path + ", byte " + std::to_string(at));
+        if (!pushed.ok()) return;
+        pushed = reorder.PushDescribed(e, [&] { return path + ", byte " + std::to_string(at); });
       }));
     }
     AAVIO_RETURN_IF_ERROR(pushed);
