@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <filesystem>
 
 #include "aavio/common/format.hpp"
@@ -51,6 +52,13 @@ std::pair<double, double> MemoryMb() {
   return {rss, peak};
 }
 
+// CPU time of the whole process, every thread [s] (0 where the clock is missing).
+double ProcessCpuSeconds() {
+  timespec t{};
+  if (clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t) != 0) return 0.0;
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
 // What a run writes into its folder.
 constexpr const char* kRunOutputs[] = {
     run_files::kTrajectory, run_files::kTrajectoryPart, run_files::kSummary,
@@ -71,6 +79,7 @@ RunRecorder::RunRecorder(RunRecorderOptions options, const geometry::StereoRig& 
       stereo_(mapping::RectifiedStereo::FromRig(rig)),
       T_imu_cam_(rig.T_imu_rect_left()),
       wall_start_(Clock::now()),
+      cpu_start_s_(ProcessCpuSeconds()),
       maps_(std::move(maps)),
       csv_((fs::path(options_.out_dir) / run_files::kTimings).string()),
       reserve_(std::move(reserve)),
@@ -251,6 +260,7 @@ Expected<RunRecord> RunRecorder::Finish(bool interrupted, TimeNs end_ns,
                                         const nlohmann::json& extra) {
   RunRecord record;
   record.wall_s = std::chrono::duration<double>(Clock::now() - wall_start_).count();
+  record.cpu_s = ProcessCpuSeconds() - cpu_start_s_;
   record.data_s = NsToSeconds(std::max(end_ns, options_.begin_ns) - options_.begin_ns);
   // Every file that can be written is, whatever failed before it (a full disk: the space held
   // back is given to these last files); the failures are listed in the summary.
@@ -335,6 +345,10 @@ void RunRecorder::Summarize(bool interrupted, TimeNs end_ns, nlohmann::json moti
   s["wall_s"] = record->wall_s;
   s["evaluation_s"] = evaluation_s;
   s["real_time_factor"] = processing_s > 0.0 ? record->data_s / processing_s : 0.0;
+  // The scoring runs on the calling thread: its time is CPU time too, and left out the same way.
+  const double cpu_s = std::max(record->cpu_s - evaluation_s, 0.0);
+  s["cpu_s"] = cpu_s;
+  s["cpu_s_per_data_s"] = record->data_s > 0.0 ? cpu_s / record->data_s : 0.0;
   s["events"] = events_;
   s["poses"] = trajectory_.size();
   counts_.AddTo(&s, trajectory_.empty() ? std::nullopt : std::optional(trajectory_.front().t_ns));

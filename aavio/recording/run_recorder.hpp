@@ -70,6 +70,9 @@ struct RunRecorderOptions {
 struct RunRecord {
   nlohmann::json summary;
   double data_s = 0.0, wall_s = 0.0;
+  /// CPU time of every thread of the process from Open to Finish [s]; summary.json "cpu_s" and
+  /// "cpu_s_per_data_s" leave the scoring out, as "real_time_factor" does.
+  double cpu_s = 0.0;
   std::optional<TrajectoryEvaluation> accuracy;
   /// Why there is no accuracy although the sequence has a ground truth (summary.json
   /// "accuracy_error"): e.g. fewer than 10 poses to score.
@@ -152,6 +155,7 @@ class RunRecorder {
   std::optional<geometry::RigidTransform> T_imu_cam_;  // the rig's IMU ← rectified left camera
   imu::GravityDirectionEstimator gravity_;
   std::chrono::steady_clock::time_point wall_start_;
+  double cpu_start_s_ = 0.0;  ///< the process's CPU time at Open [s]
   // What it writes as the run goes.
   MapOutputs maps_;
   TimingsCsv csv_;

@@ -11,6 +11,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <thread>
 
 #include "aavio/common/format.hpp"
 #include "aavio/common/time.hpp"
@@ -207,6 +208,7 @@ TEST(Cli, RunOdometryWritesItsOutputsAndIsDeterministic) {
   ASSERT_EQ(r.code, kExitOk) << r.err;
   EXPECT_NE(r.out.find("accuracy vs ground truth"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("real-time factor"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("CPU-s per s of data"), std::string::npos) << r.out;
   r = RunAavio({"run", seq, "--out", two, "--quiet", "--set", "pipeline.num_threads=2"});
   ASSERT_EQ(r.code, kExitOk) << r.err;
   const std::string traj = ReadAll(std::filesystem::path(one) / "stamped_traj_estimate.txt");
@@ -233,6 +235,12 @@ TEST(Cli, RunOdometryWritesItsOutputsAndIsDeterministic) {
   }
   EXPECT_GT(j["accuracy"]["pairs"].get<int>(), 100);
   EXPECT_GT(j["peak_rss_mb"].get<double>(), 0.0);
+  // CPU time of every thread beside the real-time factor; a run's threads cannot use more than
+  // the wall time on each of the cores they had.
+  const double cpu_s = j["cpu_s"].get<double>(), data_s = j["data_duration_s"].get<double>();
+  EXPECT_GT(cpu_s, 0.0);
+  EXPECT_LE(cpu_s, j["wall_s"].get<double>() * std::thread::hardware_concurrency() + 0.05);
+  EXPECT_NEAR(j["cpu_s_per_data_s"].get<double>(), cpu_s / data_s, 1e-9);
   EXPECT_GT(j["depth"]["points"].get<int>(), 0);
   // Per mapping cycle: what each kind of stereo matched, and where temporal candidates were lost
   // (their outcomes add up to the candidates).

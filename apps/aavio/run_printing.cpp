@@ -13,9 +13,11 @@ namespace {
 void PrintOdometryRun(const recording::RunRecord& r, Context& ctx) {
   const nlohmann::json& s = r.summary;
   auto count = [&](const char* status) { return s["status"].value(status, 0); };
-  ctx.out << StrFormat("%s%.2f s of data (%lld events) in %.1f s: real-time factor %.2f\n",
-                       s["interrupted"].get<bool>() ? "interrupted: " : "", r.data_s,
-                       s["events"].get<long long>(), r.wall_s, s["real_time_factor"].get<double>());
+  ctx.out << StrFormat(
+      "%s%.2f s of data (%lld events) in %.1f s: real-time factor %.2f, %.2f CPU-s per s of "
+      "data\n",
+      s["interrupted"].get<bool>() ? "interrupted: " : "", r.data_s, s["events"].get<long long>(),
+      r.wall_s, s["real_time_factor"].get<double>(), s["cpu_s_per_data_s"].get<double>());
   const std::string imu = count("imu") > 0 ? StrFormat(", IMU alone %d", count("imu")) : "";
   ctx.out << StrFormat(
       "poses %zu: tracking ok %d, lost %d, no map %d%s; %d bootstrap(s), %d "
