@@ -115,6 +115,9 @@ class PyOdometry {
     d["skipped_ticks"] = s.skipped_ticks;
     d["skipped_mapping_cycles"] = s.skipped_mapping_cycles;
     d["max_backlog_s"] = s.max_backlog_s;
+    d["latency_median_ms"] = s.latency_median_ms;
+    d["latency_p99_ms"] = s.latency_p99_ms;
+    d["latency_max_ms"] = s.latency_max_ms;
     std::lock_guard<std::mutex> guard(mutex_);
     d["maps"] = maps_;
     return d;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "aavio/common/format.hpp"
 
@@ -56,10 +57,12 @@ LiveOdometry::LiveOdometry(const geometry::StereoRig& rig, const OdometryConfig&
       odometry_(rig, WithRealTime(config, options.real_time), start_ns),
       events_watermark_ns_{start_ns, start_ns},
       imu_watermark_ns_(start_ns),
-      processed_until_ns_(start_ns) {
+      processed_until_ns_(start_ns),
+      noted_horizon_ns_(start_ns) {
   odometry_.on_tick = [this](const OdometryTick& tick) {
     {
       std::lock_guard<std::mutex> guard(mutex_);
+      NoteLatency(tick.t_ns);
       ++stats_.ticks;
       stats_.skipped_ticks += tick.skipped_ticks;
       stats_.skipped_mapping_cycles += tick.mapping_skipped ? 1 : 0;
@@ -82,6 +85,28 @@ TimeNs LiveOdometry::Horizon() const {
   TimeNs horizon = std::min(events_watermark_ns_[0], events_watermark_ns_[1]);
   if (options_.wait_for_imu) horizon = std::min(horizon, imu_watermark_ns_);
   return horizon;
+}
+
+void LiveOdometry::NoteHorizon() {
+  const TimeNs horizon = Horizon();
+  if (horizon <= noted_horizon_ns_) return;
+  noted_horizon_ns_ = horizon;
+  horizon_arrivals_.emplace_back(horizon, std::chrono::steady_clock::now());
+}
+
+void LiveOdometry::NoteLatency(TimeNs tick_ns) {
+  // The first arrival at or past the tick completed its data; the earlier ones no later tick
+  // needs. (The last ticks of Finish may have no arrival: they count from the Finish call.)
+  while (horizon_arrivals_.size() > 1 && horizon_arrivals_[1].first <= tick_ns)
+    horizon_arrivals_.pop_front();
+  if (!horizon_arrivals_.empty() && horizon_arrivals_.front().first < tick_ns)
+    horizon_arrivals_.pop_front();
+  if (horizon_arrivals_.empty()) return;
+  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() -
+                                                              horizon_arrivals_.front().second)
+                        .count();
+  latency_ms_.Add(ms);
+  stats_.latency_max_ms = std::max(stats_.latency_max_ms, ms);
 }
 
 Status LiveOdometry::PushEvents(events::Camera camera, std::span<const events::Event> events,
@@ -115,6 +140,7 @@ Status LiveOdometry::PushEvents(events::Camera camera, std::span<const events::E
   events_[side].insert(events_[side].end(), events.begin(), events.end());
   events_watermark_ns_[side] = watermark;
   stats_.events_pushed[side] += static_cast<std::int64_t>(events.size());
+  NoteHorizon();
   if (options_.real_time) {
     lock.unlock();
     data_ready_.notify_one();
@@ -147,6 +173,7 @@ Status LiveOdometry::PushImu(std::span<const imu::ImuSample> samples) {
   imu_.insert(imu_.end(), samples.begin(), samples.end());
   imu_watermark_ns_ = watermark;
   stats_.imu_samples_pushed += static_cast<std::int64_t>(samples.size());
+  NoteHorizon();
   if (options_.real_time) {
     lock.unlock();
     data_ready_.notify_one();
@@ -200,6 +227,9 @@ Status LiveOdometry::Finish(std::optional<TimeNs> end_ns) {
   std::unique_lock<std::mutex> lock(mutex_);
   if (finishing_) return FailedPrecondition("LiveOdometry::Finish called twice");
   finishing_ = true;
+  // The ticks Finish runs past the horizon wait from now.
+  noted_horizon_ns_ = std::numeric_limits<TimeNs>::max();
+  horizon_arrivals_.emplace_back(noted_horizon_ns_, std::chrono::steady_clock::now());
   lock.unlock();
   data_ready_.notify_all();
   if (worker_.joinable()) worker_.join();  // it returns between two Process calls
@@ -214,7 +244,10 @@ Status LiveOdometry::Finish(std::optional<TimeNs> end_ns) {
 
 LiveStats LiveOdometry::stats() const {
   std::lock_guard<std::mutex> guard(mutex_);
-  return stats_;
+  LiveStats stats = stats_;
+  stats.latency_median_ms = latency_ms_.Quantile(0.5);
+  stats.latency_p99_ms = latency_ms_.Quantile(0.99);
+  return stats;
 }
 
 }  // namespace aavio::pipeline

@@ -4,9 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <random>
+#include <thread>
 
 #include "tests/preset_config.hpp"
 #include "tests/simulated_sequence.hpp"
@@ -67,6 +69,14 @@ class Chunker {
   const Streams& all_;
   std::size_t l_ = 0, r_ = 0, m_ = 0;
 };
+
+/// Every stream's next data before `t`, each camera's declared complete up to `t`.
+Status PushUntil(LiveOdometry& live, Chunker* chunker, TimeNs t) {
+  const Chunk c = chunker->Next(t);
+  AAVIO_RETURN_IF_ERROR(live.PushImu(c.imu));
+  AAVIO_RETURN_IF_ERROR(live.PushEvents(events::Camera::kLeft, c.left, t));
+  return live.PushEvents(events::Camera::kRight, c.right, t);
+}
 
 /// The reference: Odometry fed the reader's 1 ms packets.
 std::vector<OdometryTick> Reference(const OdometryConfig& config) {
@@ -149,12 +159,8 @@ TEST(LiveOdometry, RealTimeShedsTicksNeverEvents) {
   // 50 ms of data per push, with no pause.
   const TimeNs step = 50 * kNsPerMs;
   Chunker chunker(all);
-  for (TimeNs t = Mini().start_ns + step; !chunker.done(); t += step) {
-    const Chunk c = chunker.Next(t);
-    ASSERT_TRUE((*live)->PushImu(c.imu).ok());
-    ASSERT_TRUE((*live)->PushEvents(events::Camera::kLeft, c.left, t).ok());
-    ASSERT_TRUE((*live)->PushEvents(events::Camera::kRight, c.right, t).ok());
-  }
+  for (TimeNs t = Mini().start_ns + step; !chunker.done(); t += step)
+    ASSERT_TRUE(PushUntil(**live, &chunker, t).ok());
   ASSERT_TRUE((*live)->Finish(all.end_ns).ok());
   const LiveStats stats = (*live)->stats();
   EXPECT_EQ(stats.events_pushed[0], static_cast<std::int64_t>(all.left.size()));
@@ -170,6 +176,31 @@ TEST(LiveOdometry, RealTimeShedsTicksNeverEvents) {
   // Every tick due was either run or skipped: 1.5 s at 100 Hz.
   EXPECT_EQ(stats.ticks + stats.skipped_ticks,
             static_cast<std::int64_t>(Reference(Config()).size()));
+}
+
+TEST(LiveOdometry, LatencyCountsFromThePushThatCompletedATicksData) {
+  // Data pushed at its own pace (5 ms packets, at real time): a tick's latency is the time from
+  // the push of its last data to its pose — milliseconds —, not from the start of the data
+  // (which would put the median near 0.75 s).
+  ASSERT_TRUE(Mini().rig.has_value());
+  const Streams all = Concatenated();
+  auto live = LiveOdometry::Create(*Mini().rig, Config(), Mini().start_ns, {.real_time = true});
+  ASSERT_TRUE(live.ok()) << live.status().message();
+  EXPECT_EQ((*live)->stats().latency_median_ms, 0.0);
+  const TimeNs step = 5 * kNsPerMs;
+  Chunker chunker(all);
+  const auto wall_start = std::chrono::steady_clock::now();
+  for (TimeNs t = Mini().start_ns + step; !chunker.done(); t += step) {
+    std::this_thread::sleep_until(wall_start + std::chrono::nanoseconds(t - Mini().start_ns));
+    ASSERT_TRUE(PushUntil(**live, &chunker, t).ok());
+  }
+  ASSERT_TRUE((*live)->Finish(all.end_ns).ok());
+  const LiveStats stats = (*live)->stats();
+  EXPECT_GT(stats.ticks, 100);
+  EXPECT_GT(stats.latency_median_ms, 0.0);
+  EXPECT_LT(stats.latency_median_ms, 400.0);
+  EXPECT_LE(stats.latency_median_ms, stats.latency_p99_ms);
+  EXPECT_LE(stats.latency_p99_ms, stats.latency_max_ms * 1.01);  // the quantiles are within 0.5 %
 }
 
 TEST(LiveOdometry, TrackingHoldsWhenTwoTicksInThreeAreShed) {

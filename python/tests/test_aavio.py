@@ -83,6 +83,7 @@ def test_odometry_on_arrays_in_random_chunks_is_the_same(twin):
     stats = odo.stats
     assert stats["events_processed"] == (len(left), len(right))
     assert stats["skipped_ticks"] == 0 and stats["maps"] > 5
+    assert 0 < stats["latency_median_ms"] <= stats["latency_p99_ms"]
 
 
 def test_evaluate_and_load_run(twin):
