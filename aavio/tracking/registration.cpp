@@ -136,6 +136,14 @@ void Registration::Linearize(const RegistrationImages& images,
                              const geometry::RigidTransform& T_ref_cur,
                              std::span<const int> indices, Eigen::VectorXd* residuals,
                              Eigen::Matrix<double, Eigen::Dynamic, 6>* jacobian, int* valid) const {
+  Linearize(images, T_ref_cur, indices, residuals, jacobian, valid, nullptr);
+}
+
+void Registration::Linearize(const RegistrationImages& images,
+                             const geometry::RigidTransform& T_ref_cur,
+                             std::span<const int> indices, Eigen::VectorXd* residuals,
+                             Eigen::Matrix<double, Eigen::Dynamic, 6>* jacobian, int* valid,
+                             double* inside_robust_sum) const {
   const Eigen::Matrix3d& R = T_ref_cur.R;
   const Eigen::Matrix3d Rt = R.transpose();
   const double f = camera_.f, delta = config_.huber_threshold;
@@ -156,6 +164,7 @@ void Registration::Linearize(const RegistrationImages& images,
                                                        static_cast<int>(u + 0.5)) > 125) {
         const BilinearWeights at = WeightsAt(u, v);
         r = Bilinear<std::uint8_t>(images.negative_ts, at);
+        if (inside_robust_sum) *inside_robust_sum += r <= delta ? r * r : delta * r;
         if (jacobian) {
           const double gu = Bilinear<float>(images.grad_u, at),
                        gv = Bilinear<float>(images.grad_v, at);
@@ -178,25 +187,10 @@ void Registration::Linearize(const RegistrationImages& images,
   }
 }
 
-double Registration::Alignment(const RegistrationImages& images,
-                               const geometry::RigidTransform& T_ref_cur) const {
+double Registration::Alignment(const RegistrationImages& images, double points_sum,
+                               int points) const {
   const double delta = config_.huber_threshold;
   auto huber = [delta](double r) { return r <= delta ? r * r : delta * r; };
-  const Eigen::Matrix3d Rt = T_ref_cur.R.transpose();
-  double points_sum = 0.0;
-  int points = 0;
-  for (const Eigen::Vector3d& p : points_) {
-    const Eigen::Vector3d q = Rt * (p - T_ref_cur.t);
-    if (q.z() <= 1e-6) continue;
-    const double u = camera_.f * q.x() / q.z() + camera_.cx,
-                 v = camera_.f * q.y() / q.z() + camera_.cy;
-    if (u < 0.0 || v < 0.0 || u >= camera_.width - 1.0 || v >= camera_.height - 1.0 ||
-        images.valid_mask.at<std::uint8_t>(static_cast<int>(v + 0.5), static_cast<int>(u + 0.5)) <=
-            125)
-      continue;
-    points_sum += huber(Bilinear<std::uint8_t>(images.negative_ts, WeightsAt(u, v)));
-    ++points;
-  }
   // The image: every 4th pixel of every 4th row inside the mask.
   double image_sum = 0.0;
   int pixels = 0;
@@ -266,8 +260,13 @@ RegistrationResult Registration::Solve(
       if (!step.accepted || step.small_reduction) break;
     }
   }
-  result.final_cost = MeanCost(images, result.T_ref_cur, all, nullptr);
-  result.alignment = Alignment(images, result.T_ref_cur);
+  // The final cost and the alignment's points from one pass over all points.
+  Eigen::VectorXd r;
+  int inside = 0;
+  double inside_sum = 0.0;
+  Linearize(images, result.T_ref_cur, all, &r, nullptr, &inside, &inside_sum);
+  result.final_cost = r.squaredNorm() / static_cast<double>(n);
+  result.alignment = Alignment(images, inside_sum, inside);
   return result;
 }
 

@@ -81,8 +81,15 @@ class Registration {
   const std::vector<Eigen::Vector3d>& points() const { return points_; }  ///< the chosen subset
 
  private:
-  double Alignment(const RegistrationImages& images,
-                   const geometry::RigidTransform& T_ref_cur) const;
+  /// Linearize, also adding up the robust cost ρ(r) of the points inside the image and mask
+  /// (`inside_robust_sum`, if given).
+  void Linearize(const RegistrationImages& images, const geometry::RigidTransform& T_ref_cur,
+                 std::span<const int> indices, Eigen::VectorXd* residuals,
+                 Eigen::Matrix<double, Eigen::Dynamic, 6>* jacobian, int* valid,
+                 double* inside_robust_sum) const;
+  /// The mean robust cost of the `points` map points inside the image (their sum `points_sum`)
+  /// over that of the image's pixels: well below 1 when the map sits on the edges.
+  double Alignment(const RegistrationImages& images, double points_sum, int points) const;
   // The mean robust squared residual of the points `indices` at T_ref_cur, and the share of
   // them inside the image and mask.
   double MeanCost(const RegistrationImages& images, const geometry::RigidTransform& T_ref_cur,
