@@ -63,5 +63,41 @@ TEST(DepthFolderWriter, AFolderWithoutMapsIsRemovedAndBadImagesAreRefused) {
       << under_file.status().message();
 }
 
+// The images are written on the writer's thread: Add copies them (a caller may reuse its
+// images at once), and a write that fails comes back from the next Add or from Finish, naming
+// the file.
+TEST(DepthFolderWriter, WritesCopiesInTheBackgroundAndReportsAFailedWriteLater) {
+  const fs::path dir = testing::ScratchDir() / "depth";
+  Expected<DepthFolderWriter> writer = DepthFolderWriter::Create(dir.string());
+  ASSERT_TRUE(writer.ok()) << writer.status().message();
+  cv::Mat disparity(4, 6, CV_16UC1, cv::Scalar(3 * 256));
+  ASSERT_TRUE(writer->Add(1'000'000'000, disparity, cv::Mat()).ok());
+  disparity.setTo(cv::Scalar(0));  // after Add: not what was written
+  ASSERT_TRUE(writer->Finish().ok());
+  EXPECT_EQ(writer->count(), 1);
+  Expected<std::vector<GtDepthEntry>> index = ReadGtDepthIndex(dir.string());
+  ASSERT_TRUE(index.ok()) << index.status().message();
+  Expected<GtDepthFrame> frame = LoadGtDepthFrame(dir.string(), (*index)[0], 30.0, 0.0);
+  ASSERT_TRUE(frame.ok()) << frame.status().message();
+  EXPECT_FLOAT_EQ(frame->depth_m.at<float>(2, 3), 10.0f);
+
+  const fs::path gone = testing::ScratchDir() / "gone";
+  Expected<DepthFolderWriter> lost = DepthFolderWriter::Create(gone.string());
+  ASSERT_TRUE(lost.ok());
+  fs::remove_all(gone);  // every write into it fails
+  const cv::Mat picture(4, 6, CV_8UC3, cv::Scalar(0, 0, 255));
+  Status status = Status::Ok();
+  for (int i = 0; i < 5 && status.ok(); ++i) {
+    Expected<std::string> added = lost->Add(i * 200'000'000, disparity, picture);
+    if (!added) status = added.status();
+  }
+  if (status.ok()) status = lost->Finish();
+  ASSERT_FALSE(status.ok());
+  EXPECT_NE(status.message().find("gone/disparity_000000.png: cannot write"), std::string::npos)
+      << status.message();
+  EXPECT_EQ(lost->count(), 0);
+  EXPECT_FALSE(lost->Finish().ok());
+}
+
 }  // namespace
 }  // namespace aavio::io
