@@ -39,9 +39,11 @@ void ReorderBuffer<T>::Release(TimeNs t_end_ns, std::vector<T>* out) {
                      [](const T& a, const T& b) { return a.t_ns < b.t_ns; });
     sorted_ = true;
   }
-  std::size_t end = begin_;
-  while (end < pending_.size() && pending_[end].t_ns < t_end_ns)
-    ++end;
+  // Held elements are sorted: the first at or after t_end_ns by bisection.
+  const std::size_t end = static_cast<std::size_t>(
+      std::partition_point(pending_.begin() + static_cast<std::ptrdiff_t>(begin_), pending_.end(),
+                           [t_end_ns](const T& x) { return x.t_ns < t_end_ns; }) -
+      pending_.begin());
   out->insert(out->end(), pending_.begin() + static_cast<std::ptrdiff_t>(begin_),
               pending_.begin() + static_cast<std::ptrdiff_t>(end));
   begin_ = end;

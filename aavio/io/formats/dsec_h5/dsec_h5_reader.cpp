@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <filesystem>
+#include <limits>
+#include <type_traits>
 
 #include "aavio/common/format.hpp"
 #include "aavio/io/decoded_stream_impl.hpp"
@@ -28,13 +30,18 @@ struct DsecH5Decoder {
   std::uint64_t count = 0;
   std::uint64_t next_index = 0;  // next event to read from the file
   ReorderBuffer<events::Event> reorder{0};
-  std::vector<std::int32_t> xs, ys;  // wider than the file's uint16: a signed file's -1 shows
-  std::vector<std::int16_t> ps;
-  std::vector<std::int64_t> ts;
+  // Each column is read in the file's own integer type (HDF5's conversions cost more than the
+  // decompression) and widened to int64 here, where every value but uint64's upper half is
+  // exact: a signed file's -1 or a wrong column's 70000 shows as it is.
+  std::array<h5::Handle, 4> file_types;  // native, as the file stores x, y, p, t
+  std::vector<unsigned char> raw;
+  std::vector<std::int64_t> xs, ys, ps, ts;
   std::vector<events::Event> block;  // the block's events before the reorder buffer
 
   Status ReadRange(std::uint64_t begin, std::uint64_t n);
   Status ReadBlock();
+  /// The error of the first bad event among the block's `n` (ReadBlock found one).
+  Status DescribeBadEvent(std::uint64_t n) const;
   Expected<std::int64_t> ReadT(std::uint64_t index);
 
   Status ReadUntil(TimeNs t_end_ns, std::vector<events::Event>* out);
@@ -63,28 +70,54 @@ Status ReadSlab(hid_t dataset, hid_t mem_type, std::uint64_t begin, std::uint64_
   return Status::Ok();
 }
 
+template <typename T>
+void WidenFrom(const unsigned char* raw, std::size_t n, std::int64_t* out) {
+  const T* values = reinterpret_cast<const T*>(raw);
+  for (std::size_t i = 0; i < n; ++i) {
+    if constexpr (std::is_same_v<T, std::uint64_t>) {
+      out[i] = static_cast<std::int64_t>(
+          std::min<std::uint64_t>(values[i], std::numeric_limits<std::int64_t>::max()));
+    } else {
+      out[i] = static_cast<std::int64_t>(values[i]);
+    }
+  }
+}
+
+// The values of native integer `type` in `raw` as int64 (the open checked its size).
+void Widen(hid_t type, const unsigned char* raw, std::size_t n, std::int64_t* out) {
+  const bool is_signed = H5Tget_sign(type) == H5T_SGN_2;
+  switch (H5Tget_size(type)) {
+    case 1:
+      return is_signed ? WidenFrom<std::int8_t>(raw, n, out) : WidenFrom<std::uint8_t>(raw, n, out);
+    case 2:
+      return is_signed ? WidenFrom<std::int16_t>(raw, n, out)
+                       : WidenFrom<std::uint16_t>(raw, n, out);
+    case 4:
+      return is_signed ? WidenFrom<std::int32_t>(raw, n, out)
+                       : WidenFrom<std::uint32_t>(raw, n, out);
+    default:
+      return is_signed ? WidenFrom<std::int64_t>(raw, n, out)
+                       : WidenFrom<std::uint64_t>(raw, n, out);
+  }
+}
+
 }  // namespace
 
 Status DsecH5Decoder::ReadRange(std::uint64_t begin, std::uint64_t n) {
   h5::SilenceErrorPrinting();  // HDF5's printing is per thread: this may be a reader's thread
-  xs.resize(n);
-  ys.resize(n);
-  ps.resize(n);
-  ts.resize(n);
-  AAVIO_RETURN_IF_ERROR(
-      ReadSlab(datasets[0].get(), H5T_NATIVE_INT32, begin, n, xs.data(), path, kFields[0]));
-  AAVIO_RETURN_IF_ERROR(
-      ReadSlab(datasets[1].get(), H5T_NATIVE_INT32, begin, n, ys.data(), path, kFields[1]));
-  AAVIO_RETURN_IF_ERROR(
-      ReadSlab(datasets[2].get(), H5T_NATIVE_INT16, begin, n, ps.data(), path, kFields[2]));
-  AAVIO_RETURN_IF_ERROR(
-      ReadSlab(datasets[3].get(), H5T_NATIVE_INT64, begin, n, ts.data(), path, kFields[3]));
+  const std::array<std::vector<std::int64_t>*, 4> columns = {&xs, &ys, &ps, &ts};
+  for (std::size_t c = 0; c < columns.size(); ++c) {
+    const hid_t type = file_types[c].get();
+    raw.resize(n * H5Tget_size(type));
+    AAVIO_RETURN_IF_ERROR(
+        ReadSlab(datasets[c].get(), type, begin, n, raw.data(), path, kFields[c]));
+    columns[c]->resize(n);
+    Widen(type, raw.data(), n, columns[c]->data());
+  }
   return Status::Ok();
 }
 
-Status DsecH5Decoder::ReadBlock() {
-  const std::uint64_t n = std::min<std::uint64_t>(options.block_events, count - next_index);
-  AAVIO_RETURN_IF_ERROR(ReadRange(next_index, n));
+Status DsecH5Decoder::DescribeBadEvent(std::uint64_t n) const {
   // HDF5 would clamp a negative x to 0 when reading it as uint16; a polarity other than 0/1
   // (or -1/1) is a wrong column or a corrupt file.
   for (std::uint64_t i = 0; i < n; ++i) {
@@ -108,7 +141,6 @@ Status DsecH5Decoder::ReadBlock() {
       }
     }
   }
-  block.resize(n);
   for (std::uint64_t i = 0; i < n; ++i) {
     TimeNs t_ns = 0;
     if (!MicrosecondsToNs(ts[i], t_offset_us, &t_ns)) {
@@ -116,9 +148,28 @@ Status DsecH5Decoder::ReadBlock() {
                         std::to_string(ts[i]) + " µs (+ t_offset " + std::to_string(t_offset_us) +
                         ") is beyond what nanoseconds hold (292 years): a corrupt file");
     }
+  }
+  return InvalidArgument(path + ": a corrupt block of events");  // not reached
+}
+
+Status DsecH5Decoder::ReadBlock() {
+  const std::uint64_t n = std::min<std::uint64_t>(options.block_events, count - next_index);
+  AAVIO_RETURN_IF_ERROR(ReadRange(next_index, n));
+  // One pass converts and checks; a block with a bad event is scanned again for the message.
+  const std::uint64_t max_x = options.width > 0 ? options.width - 1 : 65535;
+  const std::uint64_t max_y = options.width > 0 ? options.height - 1 : 65535;
+  bool valid = true;
+  block.resize(n);
+  for (std::uint64_t i = 0; i < n; ++i) {
+    TimeNs t_ns = 0;
+    const bool t_valid = MicrosecondsToNs(ts[i], t_offset_us, &t_ns);
+    valid &= t_valid & (static_cast<std::uint64_t>(xs[i]) <= max_x) &
+             (static_cast<std::uint64_t>(ys[i]) <= max_y) &
+             (static_cast<std::uint64_t>(ps[i]) + 1 <= 2);
     block[i] = {t_ns, static_cast<std::uint16_t>(xs[i]), static_cast<std::uint16_t>(ys[i]),
                 static_cast<std::uint8_t>(ps[i] > 0 ? 1 : 0)};
   }
+  if (!valid) return DescribeBadEvent(n);
   // In-order runs in one copy; an element out of order goes through Push (reordered or an error).
   const std::span<const events::Event> all(block);
   for (std::size_t i = 0; i < n;) {
@@ -215,6 +266,13 @@ Expected<std::unique_ptr<DsecH5EventStream>> DsecH5EventStream::OpenHere(
     }
     n = static_cast<std::int64_t>(dims[0]);
     AAVIO_RETURN_IF_ERROR(h5::CheckReadable(s->datasets[i].get(), path, kFields[i]));
+    s->file_types[i] = h5::Handle(H5Tget_native_type(type.get(), H5T_DIR_ASCEND), H5Tclose);
+    const std::size_t size = s->file_types[i].valid() ? H5Tget_size(s->file_types[i].get()) : 0;
+    if (size != 1 && size != 2 && size != 4 && size != 8) {
+      return ParseError(path + ": " + kFields[i] +
+                        " must hold integers of 1, 2, 4 or 8 bytes (DSEC: x, y uint16; p uint8; t "
+                        "uint32 or int64)");
+    }
   }
   s->count = static_cast<std::uint64_t>(n);
 
