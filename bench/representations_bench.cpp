@@ -1,9 +1,13 @@
-// Costs of the representation stage on one core at 640×480 (issue: TS ≤ 1.0 ms, AA ≤ 1.5 ms,
-// sampling ≤ 0.5 ms for ~70k events per tick). The events are real simulator output: 200 ms of
-// the dsec preset's street, with time compressed so that a 10 ms tick holds ~70k events (the
-// spatial structure of a drive, at the event rate of a fast one).
+// Costs of the representation stage on one core, per sensor size and event rate: the time
+// surface (insertion, render, rectification, median), its negative and gradients, the AA map, the
+// edge samples, and the whole observation of both cameras. The events are real simulator output:
+// a stretch of each preset's scene (rpg 240×180, dsec 640×480, tum_vie 1280×720), with time
+// compressed or stretched so that a 10 ms tick holds the events per camera the benchmark's second
+// argument gives, in thousands (14k: the rpg twins' 1.4 Mev/s; 40k: DSEC's 4 Mev/s; 100k: a
+// TUM-VIE desk at 10 Mev/s; 200k: 20 Mev/s, a fast hand-held VGA camera or a busy street).
 #include <benchmark/benchmark.h>
 
+#include <map>
 #include <opencv2/core.hpp>
 
 #include "aavio/events/adaptive_accumulation.hpp"
@@ -18,7 +22,13 @@ namespace {
 using namespace aavio;
 
 constexpr TimeNs kTick = 10 * kNsPerMs;
-constexpr std::size_t kEventsPerTick = 70'000;
+// Benchmark argument 0: the preset, and how much of its motion is simulated how fast — enough
+// events for 10 ticks or more at the higher rate below.
+struct Sensor {
+  const char* preset;
+  double seconds, speed;
+};
+constexpr Sensor kSensors[] = {{"rpg", 1.0, 1.0}, {"dsec", 1.0, 3.0}, {"tum_vie", 0.15, 1.0}};
 
 struct Workload {
   geometry::StereoRectification rectification;
@@ -27,33 +37,60 @@ struct Workload {
   TimeNs end_ns = 0;
 };
 
-const Workload& GetWorkload() {
-  static const Workload workload = [] {
-    cv::setNumThreads(1);
-    sim::SimulationRequest request;
-    request.preset = "dsec";
-    request.duration_s = 3.0;
-    const sim::SimulationWorld world = *sim::BuildSimulationWorld(request);
-    sim::StereoEventSimulation simulation(world, 1);
-    const TimeNs t0 = world.spline.t_begin_ns() + SecondsToNs(1.0);  // under way
-    simulation.Start(t0);
-    Workload w;
-    while (simulation.time_ns() < t0 + 200 * kNsPerMs)
-      simulation.Step(t0 + 200 * kNsPerMs, &w.left, &w.right);
-    // Compress time: kEventsPerTick left events per tick.
-    const double scale = static_cast<double>(kEventsPerTick) * static_cast<double>(200 * kNsPerMs) /
-                         (static_cast<double>(w.left.size()) * static_cast<double>(kTick));
-    for (auto* stream : {&w.left, &w.right}) {
-      for (events::Event& e : *stream)
-        e.t_ns = static_cast<TimeNs>(static_cast<double>(e.t_ns - t0) / scale);
-    }
-    w.end_ns = static_cast<TimeNs>(static_cast<double>(200 * kNsPerMs) / scale);
-    w.rectification = geometry::BuildStereoRectification(world.rig);
-    w.width = world.rig.width();
-    w.height = world.rig.height();
-    return w;
-  }();
-  return workload;
+// A preset's events from 1 s into its motion, times from 0.
+const Workload& Simulated(int sensor) {
+  static std::map<int, Workload> cache;
+  auto found = cache.find(sensor);
+  if (found != cache.end()) return found->second;
+  cv::setNumThreads(1);
+  sim::SimulationRequest request;
+  const Sensor& spec = kSensors[sensor];
+  request.preset = spec.preset;
+  request.duration_s = 1.0 + spec.seconds;
+  request.speed = spec.speed;
+  const sim::SimulationWorld world = *sim::BuildSimulationWorld(request);
+  sim::StereoEventSimulation simulation(world, 1);
+  const TimeNs t0 = world.spline.t_begin_ns() + SecondsToNs(1.0);  // under way
+  simulation.Start(t0);
+  Workload w;
+  const TimeNs span = SecondsToNs(spec.seconds);
+  while (simulation.time_ns() < t0 + span)
+    simulation.Step(t0 + span, &w.left, &w.right);
+  for (auto* stream : {&w.left, &w.right}) {
+    for (events::Event& e : *stream)
+      e.t_ns -= t0;
+  }
+  w.end_ns = span;
+  w.rectification = geometry::BuildStereoRectification(world.rig);
+  w.width = world.rig.width();
+  w.height = world.rig.height();
+  return cache.emplace(sensor, std::move(w)).first->second;
+}
+
+// The benchmark's workload: sensor state.range(0), state.range(1) thousand left events per tick.
+const Workload& GetWorkload(const benchmark::State& state) {
+  static std::map<std::pair<int, int>, Workload> cache;
+  const auto key =
+      std::make_pair(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
+  auto found = cache.find(key);
+  if (found != cache.end()) return found->second;
+  Workload w = Simulated(key.first);
+  const double per_tick = 1e3 * key.second;
+  const double scale = per_tick * static_cast<double>(w.end_ns) /
+                       (static_cast<double>(w.left.size()) * static_cast<double>(kTick));
+  for (auto* stream : {&w.left, &w.right}) {
+    for (events::Event& e : *stream)
+      e.t_ns = static_cast<TimeNs>(static_cast<double>(e.t_ns) / scale);
+  }
+  w.end_ns = static_cast<TimeNs>(static_cast<double>(w.end_ns) / scale);
+  return cache.emplace(key, std::move(w)).first->second;
+}
+
+// Each sensor at its twins' rate and at a higher one.
+void Rates(benchmark::internal::Benchmark* b) {
+  b->ArgNames({"sensor", "kev_per_tick"});
+  for (const auto& [sensor, k] : {std::pair{0, 14}, {0, 50}, {1, 40}, {1, 200}, {2, 100}, {2, 300}})
+    b->Args({sensor, k});
 }
 
 // Index of the first event after t.
@@ -65,7 +102,7 @@ std::size_t After(const std::vector<events::Event>& events, TimeNs t) {
 }
 
 void BM_TimeSurface(benchmark::State& state) {
-  const Workload& w = GetWorkload();
+  const Workload& w = GetWorkload(state);
   const events::ImageRectifier rectifier(w.rectification.left);
   std::unique_ptr<events::TimeSurface> ts;
   TimeNs tick = 0;
@@ -92,11 +129,12 @@ void BM_TimeSurface(benchmark::State& state) {
   }
   state.counters["events_per_tick"] =
       benchmark::Counter(static_cast<double>(events), benchmark::Counter::kAvgIterations);
+  state.counters["ticks_of_data"] = static_cast<double>(w.end_ns / kTick);
 }
-BENCHMARK(BM_TimeSurface)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_TimeSurface)->Apply(Rates)->Unit(benchmark::kMillisecond);
 
 void BM_NegativeTsAndGradients(benchmark::State& state) {
-  const Workload& w = GetWorkload();
+  const Workload& w = GetWorkload(state);
   events::TimeSurface ts(w.width, w.height, 0);
   (void)ts.Insert(std::span(w.left).subspan(0, After(w.left, 5 * kTick)));
   cv::Mat raw, negative, du, dv;
@@ -107,10 +145,10 @@ void BM_NegativeTsAndGradients(benchmark::State& state) {
     benchmark::DoNotOptimize(dv.data);
   }
 }
-BENCHMARK(BM_NegativeTsAndGradients)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_NegativeTsAndGradients)->Apply(Rates)->Unit(benchmark::kMillisecond);
 
 void BM_AaMap(benchmark::State& state) {
-  const Workload& w = GetWorkload();
+  const Workload& w = GetWorkload(state);
   const events::AdaptiveAccumulationConfig config;
   events::AdaptiveAccumulator accumulator(w.width, w.height, config);
   const events::ImageRectifier rectifier(w.rectification.left);
@@ -132,15 +170,16 @@ void BM_AaMap(benchmark::State& state) {
   state.counters["accumulated"] =
       benchmark::Counter(static_cast<double>(used), benchmark::Counter::kAvgIterations);
 }
-BENCHMARK(BM_AaMap)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_AaMap)->Apply(Rates)->Unit(benchmark::kMillisecond);
 
 void BM_Sampling(benchmark::State& state) {
-  const Workload& w = GetWorkload();
+  const Workload& w = GetWorkload(state);
   events::AdaptiveAccumulator accumulator(w.width, w.height, {});
   events::AaMap map;
   accumulator.Build(w.left, std::min(3 * kTick, w.end_ns), &map);
-  events::EdgeSamplingConfig config;                         // 2500 points, 8×6
-  config.min_spacing_px = static_cast<int>(state.range(0));  // 0: the paper, 2: the DSEC preset
+  events::EdgeSamplingConfig config;  // 2500 points, 8×6
+  // The paper's spacing on the DAVIS, the driving preset's on the larger sensors.
+  config.min_spacing_px = state.range(0) == 0 ? 0 : 2;
   std::uint64_t seed = 0;
   std::size_t samples = 0;
   for (auto _ : state) {
@@ -150,10 +189,10 @@ void BM_Sampling(benchmark::State& state) {
   }
   state.counters["samples"] = static_cast<double>(samples);
 }
-BENCHMARK(BM_Sampling)->Arg(0)->Arg(2)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Sampling)->Apply(Rates)->Unit(benchmark::kMillisecond);
 
 void BM_ObservationBothCameras(benchmark::State& state) {
-  const Workload& w = GetWorkload();
+  const Workload& w = GetWorkload(state);
   std::unique_ptr<events::RepresentationBuilder> builder;
   TimeNs tick = 0;
   std::size_t begin_l = 0, begin_r = 0;
@@ -177,7 +216,7 @@ void BM_ObservationBothCameras(benchmark::State& state) {
     benchmark::DoNotOptimize(obs.samples.data());
   }
 }
-BENCHMARK(BM_ObservationBothCameras)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ObservationBothCameras)->Apply(Rates)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 
