@@ -23,6 +23,7 @@ std::unique_ptr<CLI::App> MakeApp(Context& ctx) {
   RegisterSimulate(*app, ctx);
   RegisterRepresentations(*app, ctx);
   RegisterRun(*app, ctx);
+  RegisterReplay(*app, ctx);
   RegisterDemo(*app, ctx);
   RegisterEval(*app, ctx);
   RegisterReport(*app, ctx);

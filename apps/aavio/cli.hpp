@@ -39,6 +39,7 @@ void RegisterRun(CLI::App& app, Context& ctx);
 void RegisterDemo(CLI::App& app, Context& ctx);
 void RegisterEval(CLI::App& app, Context& ctx);
 void RegisterReport(CLI::App& app, Context& ctx);
+void RegisterReplay(CLI::App& app, Context& ctx);
 
 /// The whole command line, its commands registered; parsing sets ctx.action.
 std::unique_ptr<CLI::App> MakeApp(Context& ctx);

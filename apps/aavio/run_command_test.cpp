@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -195,6 +196,34 @@ TEST(Cli, RunBootstrapsWhenTheCameraStartsMoving) {
   // From the first map on, tracked (measured 139 of the 140 ticks after it, none lost).
   EXPECT_GE(j["status"]["ok"].get<int>(), 120) << j["status"].dump();
   EXPECT_EQ(j["reinitialisations"].get<int>(), 0);
+}
+
+// `aavio replay` plays the data at its own pace into the live odometry and accounts for every
+// tick due (run or shed); played 50 times as fast, the odometry sheds ticks to keep up and says
+// so.
+TEST(Cli, ReplaySaysWhetherTheMachineKeepsUp) {
+  const auto dir = testing::ScratchDir();
+  const std::string seq = (dir / "seq").string();
+  Result r =
+      RunAavio({"simulate", "--preset", "mini", "--duration", "1.5", "--out", seq, "--quiet"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  r = RunAavio({"replay", seq});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  long long run = -1, shed = -1;
+  const std::size_t at = r.out.find("ticks: ");
+  ASSERT_NE(at, std::string::npos) << r.out;
+  ASSERT_EQ(std::sscanf(r.out.c_str() + at, "ticks: %lld run, %lld shed", &run, &shed), 2) << r.out;
+  EXPECT_EQ(run + shed, 150) << r.out;  // 1.5 s at 100 Hz
+  EXPECT_GT(run, 0) << r.out;
+  EXPECT_NE(r.out.find("pose latency"), std::string::npos) << r.out;
+  r = RunAavio({"replay", seq, "--speed", "50"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  EXPECT_EQ(r.out.find(" 0 shed to keep up"), std::string::npos) << r.out;
+  r = RunAavio({"replay", seq, "--speed", "0"});
+  EXPECT_EQ(r.code, kExitUsage) << r.err;
+  r = RunAavio({"replay", seq, "--start", "5"});
+  EXPECT_EQ(r.code, kExitUsage) << r.err;
+  EXPECT_NE(r.err.find("--start is past the end"), std::string::npos) << r.err;
 }
 
 TEST(Cli, RunOdometryWritesItsOutputsAndIsDeterministic) {
