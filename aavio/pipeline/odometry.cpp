@@ -120,19 +120,19 @@ bool Odometry::ImuReady(TimeNs t_ns) const {
 }
 
 Status Odometry::RunTicks(TickPolicy policy, bool finishing) {
-  int skipped = 0;
   if (policy == TickPolicy::kLatest) {
     const TimeNs until = last_t_end_ns_ - std::max<TimeNs>(0, imu_offset_ns_);
     if (next_tick_ns_ < until) {
-      skipped = static_cast<int>((until - 1 - next_tick_ns_) / tick_ns_);
+      const int skipped = static_cast<int>((until - 1 - next_tick_ns_) / tick_ns_);
       next_tick_ns_ += skipped * tick_ns_;
+      skipped_unreported_ += skipped;  // told with the next tick that runs, maybe a later call's
     }
   }
   const TimeNs gap_from_ns = last_event_ns_ + kEventGapNs;  // no tick in a gap
   while (next_tick_ns_ < last_t_end_ns_ && next_tick_ns_ <= gap_from_ns &&
          (finishing || ImuReady(next_tick_ns_))) {
-    AAVIO_RETURN_IF_ERROR(Tick(next_tick_ns_, skipped));
-    skipped = 0;
+    AAVIO_RETURN_IF_ERROR(Tick(next_tick_ns_, skipped_unreported_));
+    skipped_unreported_ = 0;
     last_tick_ns_ = next_tick_ns_;
     next_tick_ns_ += tick_ns_;
   }

@@ -186,9 +186,10 @@ class Odometry {
   imu::MotionEvidence motion_evidence_;  // for the first map: is the camera moving?
   imu::InertialCheck inertial_check_;    // does the tracked motion agree with the accelerometer?
   TimeNs tick_ns_, next_tick_ns_;
-  TimeNs last_tick_ns_;   // the last tick run (the start before the first)
-  TimeNs cycle_ns_;       // mapping period: a whole number of ticks
-  TimeNs next_cycle_ns_;  // the next mapping cycle is due at the first tick at or after it
+  int skipped_unreported_ = 0;  // ticks shed (TickPolicy::kLatest) no run tick has told yet
+  TimeNs last_tick_ns_;         // the last tick run (the start before the first)
+  TimeNs cycle_ns_;             // mapping period: a whole number of ticks
+  TimeNs next_cycle_ns_;        // the next mapping cycle is due at the first tick at or after it
   bool run_mapping_;
   std::int64_t ticks_ = 0;
   int lost_ticks_ = 0;

@@ -207,18 +207,22 @@ TEST(Cli, ReplaySaysWhetherTheMachineKeepsUp) {
   Result r =
       RunAavio({"simulate", "--preset", "mini", "--duration", "1.5", "--out", seq, "--quiet"});
   ASSERT_EQ(r.code, kExitOk) << r.err;
-  r = RunAavio({"replay", seq});
-  ASSERT_EQ(r.code, kExitOk) << r.err;
-  long long run = -1, shed = -1;
-  const std::size_t at = r.out.find("ticks: ");
-  ASSERT_NE(at, std::string::npos) << r.out;
-  ASSERT_EQ(std::sscanf(r.out.c_str() + at, "ticks: %lld run, %lld shed", &run, &shed), 2) << r.out;
-  EXPECT_EQ(run + shed, 150) << r.out;  // 1.5 s at 100 Hz
-  EXPECT_GT(run, 0) << r.out;
-  EXPECT_NE(r.out.find("pose latency"), std::string::npos) << r.out;
-  r = RunAavio({"replay", seq, "--speed", "50"});
-  ASSERT_EQ(r.code, kExitOk) << r.err;
-  EXPECT_EQ(r.out.find(" 0 shed to keep up"), std::string::npos) << r.out;
+  // Every tick due, 1.5 s at 100 Hz, is run or shed — also those shed while the odometry
+  // waited for the IMU sample past a tick (once lost from the count).
+  for (const char* speed : {"1", "50"}) {
+    r = RunAavio({"replay", seq, "--speed", speed});
+    ASSERT_EQ(r.code, kExitOk) << r.err;
+    EXPECT_NE(r.out.find("pose latency"), std::string::npos) << r.out;
+    long long run = -1, shed = -1;
+    const std::size_t at = r.out.find("ticks: ");
+    ASSERT_NE(at, std::string::npos) << r.out;
+    ASSERT_EQ(std::sscanf(r.out.c_str() + at, "ticks: %lld run, %lld shed", &run, &shed), 2);
+    EXPECT_EQ(run + shed, 150) << r.out;
+    EXPECT_GT(run, 0) << r.out;
+    if (std::string(speed) == "50") {
+      EXPECT_GT(shed, 0) << r.out;
+    }
+  }
   r = RunAavio({"replay", seq, "--speed", "0"});
   EXPECT_EQ(r.code, kExitUsage) << r.err;
   r = RunAavio({"replay", seq, "--start", "5"});
