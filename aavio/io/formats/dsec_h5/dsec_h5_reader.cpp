@@ -156,16 +156,16 @@ Status DsecH5Decoder::ReadBlock() {
   const std::uint64_t n = std::min<std::uint64_t>(options.block_events, count - next_index);
   AAVIO_RETURN_IF_ERROR(ReadRange(next_index, n));
   // One pass converts and checks; a block with a bad event is scanned again for the message.
-  const std::uint64_t max_x = options.width > 0 ? options.width - 1 : 65535;
-  const std::uint64_t max_y = options.width > 0 ? options.height - 1 : 65535;
+  // The largest valid column and row: the sensor's (a known size), else uint16's.
+  const std::int64_t max_x = options.width > 0 ? std::min(options.width, 65536) - 1 : 65535;
+  const std::int64_t max_y = options.width > 0 ? std::min(options.height, 65536) - 1 : 65535;
   bool valid = true;
   block.resize(n);
   for (std::uint64_t i = 0; i < n; ++i) {
     TimeNs t_ns = 0;
     const bool t_valid = MicrosecondsToNs(ts[i], t_offset_us, &t_ns);
-    valid &= t_valid & (static_cast<std::uint64_t>(xs[i]) <= max_x) &
-             (static_cast<std::uint64_t>(ys[i]) <= max_y) &
-             (static_cast<std::uint64_t>(ps[i]) + 1 <= 2);
+    valid &= t_valid & (xs[i] >= 0) & (xs[i] <= max_x) & (ys[i] >= 0) & (ys[i] <= max_y) &
+             (ps[i] >= -1) & (ps[i] <= 1);
     block[i] = {t_ns, static_cast<std::uint16_t>(xs[i]), static_cast<std::uint16_t>(ys[i]),
                 static_cast<std::uint8_t>(ps[i] > 0 ? 1 : 0)};
   }
