@@ -27,7 +27,18 @@ void InertialCheck::Prune(TimeNs t_ns) {
   samples_.erase(samples_.begin(), first_kept);
 }
 
-void InertialCheck::Restart() { anchors_.clear(); }
+void InertialCheck::Restart() {
+  anchors_.clear();
+  agreed_.clear();
+}
+
+std::optional<Eigen::Vector3d> InertialCheck::GravityReference() const {
+  if (agreed_.size() < kMinGravityMeasurements) return std::nullopt;
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& g : agreed_)
+    sum += g;
+  return sum / static_cast<double>(agreed_.size());
+}
 
 std::optional<GravityMeasurement> InertialCheck::AddTrackedPose(
     TimeNs t_ns, const geometry::RigidTransform& T_world_cam, const Eigen::Vector3d& gyro_bias) {
@@ -46,6 +57,7 @@ std::optional<GravityMeasurement> InertialCheck::AddTrackedPose(
   if (!span01.ok() || !span12.ok()) {
     // A gap in the IMU (or none yet): no verdict across it.
     anchors_.erase(anchors_.begin(), anchors_.end() - 1);
+    agreed_.clear();
     return std::nullopt;
   }
   const double d0 = span01->dt_s, d1 = span12->dt_s;
@@ -64,7 +76,14 @@ std::optional<GravityMeasurement> InertialCheck::AddTrackedPose(
                                 (a2.p_world_imu - a1.p_world_imu).norm() / d1);
   const double span = 0.5 * (d0 + d1);
   m.tolerance_m_s2 = kMaxDisagreementMS2 + 4.0 * kTrackingError * speed / span;
-  m.agrees = std::abs(m.gravity_world.norm() - kGravityMS2) <= m.tolerance_m_s2;
+  // Against gravity's direction once it is known, else its magnitude.
+  const std::optional<Eigen::Vector3d> reference = GravityReference();
+  m.agrees = reference ? (m.gravity_world - *reference).norm() <= m.tolerance_m_s2
+                       : std::abs(m.gravity_world.norm() - kGravityMS2) <= m.tolerance_m_s2;
+  if (m.agrees) {
+    agreed_.push_back(m.gravity_world);
+    if (agreed_.size() > kGravityMeasurements) agreed_.pop_front();
+  }
   return m;
 }
 
