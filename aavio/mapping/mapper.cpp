@@ -1,5 +1,6 @@
 #include "aavio/mapping/mapper.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
@@ -49,6 +50,17 @@ std::vector<events::EdgeSample> UsableSamples(const events::Observation& obs, in
   for (int i = 0; i < max_points; ++i)
     strided.push_back(kept[static_cast<std::size_t>(i) * kept.size() / max_points]);
   return strided;
+}
+
+// Whether the edge at a rectified position runs near-horizontally by the η rule (docs/mapping.md):
+// |g_u| / |g_v| < η, an edge along which static stereo finds no disparity.
+bool NearHorizontal(const events::Observation& obs, float su, float sv, double eta) {
+  const int u = std::clamp(static_cast<int>(std::lround(su)), 0, obs.grad_u.cols - 1),
+            v = std::clamp(static_cast<int>(std::lround(sv)), 0, obs.grad_u.rows - 1);
+  double gu = std::abs(obs.grad_u.at<float>(v, u)), gv = std::abs(obs.grad_v.at<float>(v, u));
+  if (gu <= 0.01) gu = 0.1;
+  if (gv <= 0.01) gv = 0.1;
+  return gu / gv < eta;
 }
 
 }  // namespace
@@ -128,30 +140,45 @@ Status Mapper::Initialize(const PosedObservation& now, bool small_map_ok) {
 
 Expected<std::vector<DepthPoint>> Mapper::Bootstrap(const events::Observation& obs) const {
   const BootstrapConfig& bootstrap = config_.bootstrap;
-  if (bootstrap.method == BootstrapMethod::kBlockMatching) {
-    const std::vector<events::EdgeSample> samples = MappingSamples(obs, stereo_, config_);
-    std::vector<Eigen::Vector2f> positions;
-    for (const events::EdgeSample& s : samples)
-      positions.emplace_back(s.u, s.v);
-    const bool smooth = config_.static_stereo.smooth_time_surface;
-    const cv::Mat left = ToFloat(obs.ts_left, smooth), right = ToFloat(obs.ts_right, smooth);
-    const std::vector<Match> matches =
-        MatchStatic({left, right, valid_mask_}, positions, stereo_, config_.static_stereo,
-                    config_.inv_depth_range());
-    std::vector<DepthPoint> points =
-        RefineDepths({left, right, nullptr, nullptr, {}}, matches, stereo_,
-                     config_.depth_refinement, {}, config_.inv_depth_range());
-    if (!bootstrap.Accepts(points.size(), samples.size()))
-      return FailedPrecondition(bootstrap.Refusal("block-matching", points.size(), samples.size()));
-    for (DepthPoint& p : points)
-      p.age = kMinAge;  // survives the first cleanings, as SGM points
-    return points;
-  }
+  const bool block_matching = bootstrap.method == BootstrapMethod::kBlockMatching;
   std::vector<Eigen::Vector2f> positions;
-  for (const events::EdgeSample& s : obs.samples)
-    positions.emplace_back(s.u, s.v);
-  return BootstrapWithSgm(obs.ts_left, obs.ts_right, positions, stereo_, bootstrap,
-                          config_.depth_refinement.student_t_nu, config_.inv_depth_range());
+  if (block_matching) {
+    for (const events::EdgeSample& s : MappingSamples(obs, stereo_, config_))
+      positions.emplace_back(s.u, s.v);
+  } else {
+    for (const events::EdgeSample& s : obs.samples)
+      positions.emplace_back(s.u, s.v);
+  }
+  Expected<std::vector<DepthPoint>> points =
+      block_matching
+          ? BlockMatchingBootstrap(obs, positions)
+          : BootstrapWithSgm(obs.ts_left, obs.ts_right, positions, stereo_,
+                             config_.depth_refinement.student_t_nu, config_.inv_depth_range());
+  if (!points) return points.status();
+  // What the scene offers: the samples static stereo can match, not those along near-horizontal
+  // edges (a drone's climb past a wall's courses of bricks gives few others).
+  const std::size_t matchable = static_cast<std::size_t>(std::count_if(
+      positions.begin(), positions.end(),
+      [&](const Eigen::Vector2f& x) { return !NearHorizontal(obs, x.x(), x.y(), config_.eta); }));
+  if (!bootstrap.Accepts(points->size(), matchable)) {
+    return FailedPrecondition(bootstrap.Refusal(block_matching ? "block-matching" : "SGM",
+                                                points->size(), matchable, positions.size()));
+  }
+  return points;
+}
+
+std::vector<DepthPoint> Mapper::BlockMatchingBootstrap(
+    const events::Observation& obs, const std::vector<Eigen::Vector2f>& positions) const {
+  const bool smooth = config_.static_stereo.smooth_time_surface;
+  const cv::Mat left = ToFloat(obs.ts_left, smooth), right = ToFloat(obs.ts_right, smooth);
+  const std::vector<Match> matches = MatchStatic({left, right, valid_mask_}, positions, stereo_,
+                                                 config_.static_stereo, config_.inv_depth_range());
+  std::vector<DepthPoint> points =
+      RefineDepths({left, right, nullptr, nullptr, {}}, matches, stereo_, config_.depth_refinement,
+                   {}, config_.inv_depth_range());
+  for (DepthPoint& p : points)
+    p.age = kMinAge;  // survives the first cleanings, as SGM points
+  return points;
 }
 
 namespace {
@@ -172,11 +199,7 @@ SampleGroups SplitByEta(const events::Observation& obs,
   SampleGroups g;
   for (std::size_t i = 0; i < samples.size(); ++i) {
     const events::EdgeSample& s = samples[i];
-    const int u = static_cast<int>(std::lround(s.u)), v = static_cast<int>(std::lround(s.v));
-    double gu = std::abs(obs.grad_u.at<float>(v, u)), gv = std::abs(obs.grad_v.at<float>(v, u));
-    if (gu <= 0.01) gu = 0.1;
-    if (gv <= 0.01) gv = 0.1;
-    const bool horizontal = gu / gv < eta;
+    const bool horizontal = NearHorizontal(obs, s.u, s.v, eta);
     if (horizontal && temporal && has_partner) {
       const events::EdgeSample& m = on_aa_map[i];
       g.temporal_group.emplace_back(m.u, m.v);

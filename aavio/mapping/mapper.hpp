@@ -78,6 +78,9 @@ class Mapper {
  private:
   /// The first map's points, or why there are too few.
   Expected<std::vector<DepthPoint>> Bootstrap(const events::Observation& obs) const;
+  /// bootstrap.method = block_matching: the cycle's static stereo and refinement at `positions`.
+  std::vector<DepthPoint> BlockMatchingBootstrap(
+      const events::Observation& obs, const std::vector<Eigen::Vector2f>& positions) const;
   void Publish(const DepthMap& map, bool confirmed);
   /// A cycle's refined points into the fusion FIFO (a batch per kind), a new map fused at the
   /// current pose, and published if the FIFO says so.

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "aavio/mapping/depth_map.hpp"
 #include "aavio/mapping/mapping_test_utils.hpp"
@@ -100,8 +101,9 @@ TEST(BootstrapConfig, AcceptsWhatTheSceneOffers) {
   EXPECT_FALSE(b.Accepts(49, 60));     // most of too few samples: under the registration floor
   b.min_coverage = 0.0;                // the reference codes: the count alone
   EXPECT_FALSE(b.Accepts(82, 107));
-  const std::string why = b.Refusal("SGM", 82, 107);
-  EXPECT_NE(why.find("SGM bootstrap found 82 points at the 107 edge samples"), std::string::npos)
+  const std::string why = b.Refusal("SGM", 82, 107, 300);
+  EXPECT_NE(why.find("SGM bootstrap found 82 points at the 300 edge samples (107 of them not"),
+            std::string::npos)
       << why;
   EXPECT_NE(why.find("mapping.bootstrap.min_coverage"), std::string::npos) << why;
 }
@@ -134,6 +136,47 @@ TEST(Mapper, BootstrapsByBlockMatching) {
   EXPECT_NE(status.message().find("block-matching bootstrap"), std::string::npos);
   EXPECT_NE(status.message().find("mapping.bootstrap.min_points"), std::string::npos);
   EXPECT_FALSE(picky.initialized());
+}
+
+// A first map's coverage counts the samples static stereo can match: a band of near-horizontal
+// edges (no disparity along them) with three times as many samples as the rest of the view does
+// not keep a well-matched rest from making a map.
+TEST(Mapper, BootstrapCoverageLeavesOutNearHorizontalEdges) {
+  const RectifiedStereo stereo = testing::SmallStereo();
+  const std::shared_ptr<events::Observation> obs = PlaneObservation();
+  const cv::Rect band(0, 60, 160, 15);
+  obs->ts_left(cv::Rect(0, 54, 160, 27)).setTo(0);  // no patch there to match either
+  obs->grad_u(band).setTo(0.0f);
+  obs->grad_v(band).setTo(1.0f);
+  const std::size_t elsewhere = obs->samples.size();
+  for (std::uint16_t v = 60; v < 75; ++v) {
+    for (std::uint16_t u = 40; u < 150; ++u)
+      obs->samples.push_back({u, v, static_cast<float>(u), static_cast<float>(v), 2});
+  }
+  ASSERT_GT(obs->samples.size(), 2 * elsewhere);
+  const cv::Mat valid(120, 160, CV_8UC1, cv::Scalar(255));
+  MappingConfig config;
+  config.bootstrap.method = BootstrapMethod::kBlockMatching;
+  config.bootstrap.min_points = 100000;  // coverage alone decides
+  config.max_points = 5000;
+  // Every matchable sample asked for: refused, and the message counts them.
+  config.bootstrap.min_coverage = 1.0;
+  const Status refused = Mapper(stereo, valid, config).Initialize({obs, {}});
+  ASSERT_EQ(refused.code(), StatusCode::kFailedPrecondition);
+  std::size_t points = 0, samples = 0, matchable = 0;
+  ASSERT_EQ(std::sscanf(refused.message().c_str(),
+                        "block-matching bootstrap found %zu points at the %zu edge samples (%zu",
+                        &points, &samples, &matchable),
+            3)
+      << refused.message();
+  EXPECT_EQ(samples, obs->samples.size());
+  EXPECT_LT(matchable, samples / 2);
+  EXPECT_LT(points, samples / 2);       // under half of all the samples
+  EXPECT_GE(points, matchable / 2);     // but over half of those stereo can match
+  config.bootstrap.min_coverage = 0.5;  // the default: accepted
+  Mapper mapper(stereo, valid, config);
+  const Status status = mapper.Initialize({obs, {}});
+  EXPECT_TRUE(status.ok()) << status.message();
 }
 
 // The η split (the paper): near-horizontal samples go to temporal stereo only, the others to

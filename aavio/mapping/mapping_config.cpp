@@ -78,13 +78,14 @@ Status MappingConfig::Validate() const {
   return check.status();
 }
 
-std::string BootstrapConfig::Refusal(const char* stereo, std::size_t points,
+std::string BootstrapConfig::Refusal(const char* stereo, std::size_t points, std::size_t matchable,
                                      std::size_t samples) const {
   return StrFormat(
-      "%s bootstrap found %zu points at the %zu edge samples: fewer than "
-      "mapping.bootstrap.min_points = %d, and fewer than mapping.bootstrap.min_coverage = %g of "
-      "the samples or than %zu",
-      stereo, points, samples, min_points, min_coverage, kMinRegistrationPoints);
+      "%s bootstrap found %zu points at the %zu edge samples (%zu of them not along a "
+      "near-horizontal edge): fewer than mapping.bootstrap.min_points = %d, and fewer than "
+      "mapping.bootstrap.min_coverage = %g of those %zu or than %zu",
+      stereo, points, samples, matchable, min_points, min_coverage, matchable,
+      kMinRegistrationPoints);
 }
 
 }  // namespace aavio::mapping

@@ -191,11 +191,12 @@ enum class BootstrapMethod {
 /// The bootstrap of the first map (docs/mapping.md).
 struct BootstrapConfig {
   /// Accept the initial map with at least this many points ([ESVO], [ICRA]) — or, in a scene with
-  /// fewer edges, with a depth at min_coverage of the edge samples in view and at least
-  /// kMinRegistrationPoints: what the scene offers, not a count a dense scene sets.
+  /// fewer edges, with a depth at min_coverage of the edge samples static stereo can match (not
+  /// along a near-horizontal edge, by mapping.eta) and at least kMinRegistrationPoints: what the
+  /// scene offers, not a count a dense scene sets.
   int min_points = 500;
-  /// aavio (0: min_points alone, as the references): the share of the edge samples that must get a
-  /// depth for a map of fewer than min_points points.
+  /// aavio (0: min_points alone, as the references): the share of the edge samples static stereo
+  /// can match that must get a depth for a map of fewer than min_points points.
   double min_coverage = 0.5;
   static constexpr std::size_t kMinRegistrationPoints = 50;
   /// sgm: the reference codes (StereoSGBM, block 11, σ_ρ 0.001 /m). block_matching (aavio): the
@@ -207,18 +208,21 @@ struct BootstrapConfig {
   void VisitFields(V&& v) {
     v("min_points", min_points, "points that make a first map whatever the scene");
     v("min_coverage", min_coverage,
-      "or fewer (50 at least) with a depth at this share of the edge samples (aavio)");
+      "or fewer (50 at least) with a depth at this share of the samples stereo can match (aavio)");
     v("method", method, "the first map: sgm (reference) or the cycle's block matching (aavio)");
   }
   Status Validate() const;
-  /// Whether `points` depths found at `samples` edge samples make a first map.
+  /// Whether `points` depths found where static stereo can match `samples` edge samples make a
+  /// first map.
   bool Accepts(std::size_t points, std::size_t samples) const {
     return points >= static_cast<std::size_t>(min_points) ||
            (min_coverage > 0.0 && points >= kMinRegistrationPoints &&
             static_cast<double>(points) >= min_coverage * static_cast<double>(samples));
   }
-  /// Why `points` at `samples` are not enough, for the bootstrap's failure message.
-  std::string Refusal(const char* stereo, std::size_t points, std::size_t samples) const;
+  /// Why `points` are not enough, for the bootstrap's failure message: `matchable` of the
+  /// `samples` edge samples are not along a near-horizontal edge.
+  std::string Refusal(const char* stereo, std::size_t points, std::size_t matchable,
+                      std::size_t samples) const;
 };
 
 struct MappingConfig {

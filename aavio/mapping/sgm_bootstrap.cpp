@@ -12,8 +12,7 @@ namespace aavio::mapping {
 Expected<std::vector<DepthPoint>> BootstrapWithSgm(const cv::Mat& ts_left, const cv::Mat& ts_right,
                                                    std::span<const Eigen::Vector2f> points,
                                                    const RectifiedStereo& stereo,
-                                                   const BootstrapConfig& b, double student_t_nu,
-                                                   InvDepthRange rho_range) {
+                                                   double student_t_nu, InvDepthRange rho_range) {
   const DisparityRange range = StaticDisparityRange(stereo, rho_range);
   // OpenCV searches [min, min + n) with n a positive multiple of 16, and finds nothing left of
   // column min + n. From 0 to the nearest depth's disparity while that leaves half the image;
@@ -59,8 +58,6 @@ Expected<std::vector<DepthPoint>> BootstrapWithSgm(const cv::Mat& ts_left, const
     p.age = kMinAge;  // survives the first cleanings
     out.push_back(p);
   }
-  if (!b.Accepts(out.size(), points.size()))
-    return FailedPrecondition(b.Refusal("SGM", out.size(), points.size()));
   return out;
 }
 

@@ -63,13 +63,10 @@ Expected<std::optional<SceneDepth>> SceneDepthProbe::Measure(TimeNs t_ns) {
   // Every depth from kNearestM (or what half the image's width of disparity allows) to
   // infinity; any number of points is an answer here (the bootstrap's acceptance is the
   // odometry's).
-  mapping::BootstrapConfig accept_all;
-  accept_all.min_points = 0;
-  accept_all.min_coverage = 0.0;
   const double nearest_rho =
       std::min(1.0 / kNearestM, 0.5 * stereo.width / std::max(1e-9, stereo.fb()));
   Expected<std::vector<mapping::DepthPoint>> points =
-      mapping::BootstrapWithSgm(left, right, positions, stereo, accept_all,
+      mapping::BootstrapWithSgm(left, right, positions, stereo,
                                 mapping::DepthRefinementConfig{}.student_t_nu, {1e-4, nearest_rho});
   if (!points) return points.status();
   if (static_cast<int>(points->size()) < kMinPoints) return std::optional<SceneDepth>{};
