@@ -212,12 +212,12 @@ struct BootstrapConfig {
     v("method", method, "the first map: sgm (reference) or the cycle's block matching (aavio)");
   }
   Status Validate() const;
-  /// Whether `points` depths found where static stereo can match `samples` edge samples make a
-  /// first map.
-  bool Accepts(std::size_t points, std::size_t samples) const {
+  /// Whether `points` depths found among `matchable` edge samples (those static stereo can
+  /// match) make a first map.
+  bool Accepts(std::size_t points, std::size_t matchable) const {
     return points >= static_cast<std::size_t>(min_points) ||
            (min_coverage > 0.0 && points >= kMinRegistrationPoints &&
-            static_cast<double>(points) >= min_coverage * static_cast<double>(samples));
+            static_cast<double>(points) >= min_coverage * static_cast<double>(matchable));
   }
   /// Why `points` are not enough, for the bootstrap's failure message: `matchable` of the
   /// `samples` edge samples are not along a near-horizontal edge.
