@@ -3,8 +3,13 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <atomic>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <future>
+#include <mutex>
+#include <thread>
 
 #include "aavio/io/formats/dsec_h5/dsec_h5_reader.hpp"
 #include "aavio/io/formats/dsec_h5/dsec_h5_writer.hpp"
@@ -193,6 +198,55 @@ TEST(DsecH5, AChildThatHangsIsStoppedAndReported) {
   EXPECT_TRUE(h5::SurvivesInChild("x.h5", [] {}).ok());
   EXPECT_NE(h5::SurvivesInChild("x.h5", [] { std::abort(); }).message().find("crashed (signal 6"),
             std::string::npos);
+}
+
+TEST(DsecH5, AChildForkedWhileAnotherThreadHoldsALockIsForkedAgain) {
+  // fork copies the other thread's locked mutex but not the thread that would unlock it: a child
+  // that needs it waits forever. That is not a corrupt file; the probe forks again.
+  std::mutex mutex;
+  std::promise<void> locked;
+  std::thread holder([&] {
+    const std::lock_guard<std::mutex> hold(mutex);
+    locked.set_value();
+    std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+  });
+  locked.get_future().wait();
+  const Status status = h5::SurvivesInChild(
+      "x.h5", [&] { const std::lock_guard<std::mutex> g(mutex); }, 30.0);
+  holder.join();
+  EXPECT_TRUE(status.ok()) << status.message();
+}
+
+TEST(DsecH5, AChildThatStallsEveryTimeOrSpinsIsAnErrorSayingWhich) {
+  std::mutex mutex;
+  std::promise<void> locked, release;
+  std::thread holder([&] {
+    const std::lock_guard<std::mutex> hold(mutex);
+    locked.set_value();
+    release.get_future().wait();
+  });
+  locked.get_future().wait();
+  const Status stalled = h5::SurvivesInChild(
+      "x.h5", [&] { const std::lock_guard<std::mutex> g(mutex); }, 30.0);
+  // With another thread running, a child busy in HDF5 is not taken for a stalled one.
+  const Status spins = h5::SurvivesInChild(
+      "x.h5",
+      [] {
+        std::atomic<unsigned> turns{0};
+        for (;;)
+          turns.fetch_add(1, std::memory_order_relaxed);
+      },
+      2.5);
+  release.set_value();
+  holder.join();
+  EXPECT_NE(
+      stalled.message().find("x.h5: reading the file's structure in a child process stalled 5 "
+                             "times (another thread of this process holds a lock"),
+      std::string::npos)
+      << stalled.message();
+  EXPECT_NE(spins.message().find("x.h5: the HDF5 library did not finish reading"),
+            std::string::npos)
+      << spins.message();
 }
 
 TEST(DsecH5, AnIndexLongerThanTheRecordingIsIgnoredNotAllocated) {

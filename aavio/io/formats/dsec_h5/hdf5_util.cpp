@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <csignal>
+#include <cstdio>
 #include <cstring>
 #include <string>
 #include <thread>
@@ -113,11 +114,55 @@ bool LinkExists(hid_t file, const char* path) {
   return true;
 }
 
-Status SurvivesInChild(const std::string& path, const std::function<void()>& attempt,
-                       double timeout_s) {
 #if defined(__unix__)
+namespace {
+
+/// The number of threads of this process (1 where /proc is not mounted: then fork is assumed
+/// safe, as it always was).
+int ThreadCount() {
+  std::FILE* status = std::fopen("/proc/self/status", "r");
+  if (!status) return 1;
+  char line[256];
+  int threads = 1;
+  while (std::fgets(line, sizeof(line), status)) {
+    if (std::sscanf(line, "Threads: %d", &threads) == 1) break;
+  }
+  std::fclose(status);
+  return threads;
+}
+
+/// A child's scheduling state and CPU time (clock ticks) from /proc; false when unreadable.
+bool ReadChildState(pid_t child, char* state, long long* cpu_ticks) {
+  const std::string file = "/proc/" + std::to_string(child) + "/stat";
+  std::FILE* stat = std::fopen(file.c_str(), "r");
+  if (!stat) return false;
+  char text[1024] = {0};
+  const std::size_t n = std::fread(text, 1, sizeof(text) - 1, stat);
+  std::fclose(stat);
+  // "pid (comm) state ppid ..."; comm may hold spaces and parentheses: parse after the last ')'.
+  const char* close = std::strrchr(text, ')');
+  if (n == 0 || !close) return false;
+  long long utime = 0, stime = 0;
+  // state ppid pgrp session tty_nr tpgid flags minflt cminflt majflt cmajflt utime stime
+  if (std::sscanf(close + 1, " %c %*d %*d %*d %*d %*d %*u %*u %*u %*u %*u %lld %lld", state, &utime,
+                  &stime) != 3)
+    return false;
+  *cpu_ticks = utime + stime;
+  return true;
+}
+
+enum class ProbeEnd { kSurvived, kCrashed, kTimedOut, kStalled };
+
+struct Probe {
+  ProbeEnd end = ProbeEnd::kSurvived;
+  std::string how;  // kCrashed: the signal or exit status
+};
+
+/// One child: how it ended. With `stall_s` > 0, a child asleep without using any CPU for that
+/// long is stopped as stalled.
+Probe ProbeInChild(const std::function<void()>& attempt, double timeout_s, double stall_s) {
   const pid_t child = fork();
-  if (child < 0) return Status::Ok();  // no probe, as where fork does not exist
+  if (child < 0) return {};  // no probe, as where fork does not exist
   if (child == 0) {
     // A crash here is the parent's finding, not the child's: drop handlers inherited from a
     // harness (a fuzzer writing a crash report, a sanitizer's death callback) so that the child
@@ -128,32 +173,87 @@ Status SurvivesInChild(const std::string& path, const std::function<void()>& att
     attempt();
     _exit(0);  // the child only: no atexit handlers, no flush of the caller's buffers
   }
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+  using Clock = std::chrono::steady_clock;
+  const auto deadline = Clock::now() + std::chrono::duration<double>(timeout_s);
+  auto progress_at = Clock::now();
+  long long last_ticks = -1;
   for (auto wait = std::chrono::microseconds(200);;
        wait = std::min(2 * wait, std::chrono::microseconds(20'000))) {
     int status = 0;
     const pid_t done = waitpid(child, &status, WNOHANG);
     if (done == child) {
-      if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return Status::Ok();
+      if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return {};
       // Killed by a signal, or ended otherwise (a sanitizer's report, an abort handler).
-      const std::string how =
-          WIFSIGNALED(status)
-              ? "signal " + std::to_string(WTERMSIG(status)) + ", " + strsignal(WTERMSIG(status))
-              : "exit status " + std::to_string(WEXITSTATUS(status));
-      return ParseError(path + ": the HDF5 library crashed (" + how +
-                        ") reading the file's structure: the file is corrupt. `h5dump -H " + path +
-                        "` shows where; export or download it again");
+      return {ProbeEnd::kCrashed, WIFSIGNALED(status)
+                                      ? "signal " + std::to_string(WTERMSIG(status)) + ", " +
+                                            strsignal(WTERMSIG(status))
+                                      : "exit status " + std::to_string(WEXITSTATUS(status))};
     }
-    if (done < 0) return Status::Ok();  // the child was reaped elsewhere
-    if (std::chrono::steady_clock::now() > deadline) {
+    if (done < 0) return {};  // the child was reaped elsewhere
+    const auto now = Clock::now();
+    ProbeEnd stop = ProbeEnd::kSurvived;
+    if (now > deadline) stop = ProbeEnd::kTimedOut;
+    char state = 0;
+    long long ticks = 0;
+    if (stall_s > 0 && ReadChildState(child, &state, &ticks)) {
+      if (state != 'S' || ticks != last_ticks) progress_at = now;
+      last_ticks = ticks;
+      if (std::chrono::duration<double>(now - progress_at).count() > stall_s)
+        stop = ProbeEnd::kStalled;
+    }
+    if (stop != ProbeEnd::kSurvived) {
       kill(child, SIGKILL);
       waitpid(child, &status, 0);
-      return ParseError(path +
-                        ": the HDF5 library did not finish reading the file's structure in " +
-                        std::to_string(static_cast<int>(timeout_s)) +
-                        " s: the file is corrupt (or its file system hangs)");
+      return {stop, ""};
     }
     std::this_thread::sleep_for(wait);
+  }
+}
+
+}  // namespace
+#endif
+
+Status SurvivesInChild(const std::string& path, const std::function<void()>& attempt,
+                       double timeout_s) {
+#if defined(__unix__)
+  // fork copies only the calling thread. In a process of one thread the child starts with every
+  // lock free; with other threads running, one of them may hold a lock at that instant (HDF5's
+  // own, or the allocator's in a sanitizer build) that the child then waits for forever. Such a
+  // child sleeps without using CPU: it is stopped and the probe forked again, the lock most
+  // likely free by then; a child that stalls every time is an error that says so. HDF5 stuck on
+  // a corrupt file spins or reads instead, and is stopped at the deadline.
+  constexpr int kForks = 5;
+  constexpr double kStallS = 1.0;
+  const bool alone = ThreadCount() <= 1;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+  for (int fork_count = 1;; ++fork_count) {
+    const double left_s =
+        std::chrono::duration<double>(deadline - std::chrono::steady_clock::now()).count();
+    const Probe probe = ProbeInChild(attempt, std::max(left_s, 0.0), alone ? 0.0 : kStallS);
+    switch (probe.end) {
+      case ProbeEnd::kSurvived:
+        return Status::Ok();
+      case ProbeEnd::kCrashed:
+        return ParseError(path + ": the HDF5 library crashed (" + probe.how +
+                          ") reading the file's structure: the file is corrupt. `h5dump -H " +
+                          path + "` shows where; export or download it again");
+      case ProbeEnd::kTimedOut:
+        return ParseError(path +
+                          ": the HDF5 library did not finish reading the file's structure in " +
+                          std::to_string(static_cast<int>(timeout_s)) +
+                          " s: the file is corrupt (or its file system hangs)");
+      case ProbeEnd::kStalled:
+        if (fork_count < kForks && left_s > 0) {
+          std::this_thread::sleep_for(std::chrono::milliseconds(50 * fork_count));
+          continue;
+        }
+        return ParseError(path + ": reading the file's structure in a child process stalled " +
+                          std::to_string(fork_count) +
+                          " times (another thread of this process holds a lock it needs, or "
+                          "HDF5 deadlocks on a corrupt file): open the file before starting "
+                          "other threads, or check it with `h5dump -H " +
+                          path + "`");
+    }
   }
 #else
   (void)path;

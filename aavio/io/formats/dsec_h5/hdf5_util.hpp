@@ -65,8 +65,10 @@ bool LinkExists(hid_t file, const char* path);
 /// failed allocation) before any check of aavio's sees the file, and the crash should end the
 /// child, not the caller. Ok when the child ends by itself, whatever `attempt` found (the caller
 /// repeats it and reports that); an error naming the file when the child is killed by a signal,
-/// exits otherwise than at the end of `attempt`, or runs past `timeout_s`. Where fork is
-/// unavailable or fails, Ok without a probe.
+/// exits otherwise than at the end of `attempt`, or runs past `timeout_s`. In a process with
+/// other threads, a child asleep for a second without using CPU waits for a lock another thread
+/// held when it was forked: it is stopped and forked again (up to 5 times, then an error saying
+/// so). Where fork is unavailable or fails, Ok without a probe.
 Status SurvivesInChild(const std::string& path, const std::function<void()>& attempt,
                        double timeout_s = 60.0);
 
