@@ -19,8 +19,9 @@ Expected<std::optional<pipeline::SceneDepth>> MeasureSceneDepth(io::SequenceRead
       AAVIO_RETURN_IF_ERROR(probe.AddEvents(events::Camera::kLeft, packet.left));
       AAVIO_RETURN_IF_ERROR(probe.AddEvents(events::Camera::kRight, packet.right));
     }
-    // Measure at every window's end the packets have reached (all of them once data ends).
-    while (!found && next_ns <= stop_ns && (!*more || packet.t_end_ns >= next_ns)) {
+    // Measure at every window's end the packets have passed (all of them once data ends): a
+    // packet holds its events before t_end_ns, so one at t_end_ns itself is in the next.
+    while (!found && next_ns <= stop_ns && (!*more || packet.t_end_ns > next_ns)) {
       Expected<std::optional<pipeline::SceneDepth>> depth = probe.Measure(next_ns);
       if (!depth) return depth.status();
       found = *depth;
