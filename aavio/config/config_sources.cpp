@@ -12,6 +12,10 @@ namespace aavio::config {
 
 namespace {
 
+// The smallest disparity a depth is measured from: static stereo's sub-pixel refinement resolves
+// about half a pixel, so a farther depth range only adds noise.
+constexpr double kMinSceneDisparityPx = 0.5;
+
 // A configuration file's entries: those of its small_sensor section count (without that prefix)
 // only on a small sensor, after the others.
 void AddFileEntries(std::vector<ConfigEntry> entries, const ConfigSources& sources,
@@ -47,6 +51,7 @@ Expected<std::vector<ConfigEntry>> EntriesOf(const ConfigSources& sources) {
     if (!entries) return entries.status();
     AddFileEntries(std::move(*entries), sources, &out);
   }
+  out.insert(out.end(), sources.scene.begin(), sources.scene.end());
   const std::vector<std::string> overlays = OverlayNames();
   for (const std::string& file : sources.files) {
     // A shipped overlay's name, unless a file of that name is here (a folder of that name, such
@@ -71,6 +76,50 @@ Expected<std::vector<ConfigEntry>> EntriesOf(const ConfigSources& sources) {
   return out;
 }
 
+// The depth range a preset gives.
+bool PresetDepthRange(const char* preset, double* near_m, double* far_m) {
+  ConfigSources named;
+  named.preset = preset;
+  Expected<pipeline::OdometryConfig> config = ResolveOdometryConfig(named);
+  if (!config) return false;
+  *near_m = 1.0 / config->mapping.inv_depth_max;
+  *far_m = 1.0 / config->mapping.inv_depth_min;
+  return true;
+}
+
+ConfigEntry SceneEntry(const char* key, double value, const std::string& why) {
+  ConfigEntry e;
+  e.key = key;
+  e.value.scalar = StrFormat("%.6g", value);
+  e.value.origin = "the measured scene (" + why + ")";
+  return e;
+}
+
+// A rig that suggests the indoor preset, in a scene mostly beyond that preset's depth range:
+// the range is widened to hold it (sources->scene), and why is returned ("" when it holds it).
+std::string WidenDepthRangeToScene(const pipeline::SceneDepth& scene, const std::string& seen,
+                                   ConfigSources* sources) {
+  double near_m = 0, far_m = 0;
+  if (!PresetDepthRange("indoor", &near_m, &far_m)) return "";
+  const double share = scene.ShareWithin(near_m, far_m);
+  if (share >= 0.5 || scene.depths_m.empty()) return "";
+  const double p90_m = scene.depths_m[scene.depths_m.size() * 9 / 10];
+  const double fb = sources->sensor->focal_px * sources->sensor->baseline_m;
+  const double wide_far_m = std::min(2.0 * p90_m, fb / kMinSceneDisparityPx);
+  if (!(wide_far_m > far_m)) return "";
+  const double far_rounded_m = std::ceil(wide_far_m);
+  const std::string why = StrFormat(
+      "%.0f %% of its edges within the indoor preset's %g-%g m; %s; twice its 90th percentile "
+      "%.1f m, at most %.1f px of disparity",
+      100 * share, near_m, far_m, seen.c_str(), p90_m, kMinSceneDisparityPx);
+  sources->scene = {SceneEntry("mapping.inv_depth_min", 1.0 / far_rounded_m, why),
+                    SceneEntry("mapping.temporal_stereo.max_depth_m", far_rounded_m, why)};
+  return StrFormat(
+      "; the scene %s, %.0f %% of it within the preset's %g-%g m: depth range "
+      "%g-%g m",
+      seen.c_str(), 100 * share, near_m, far_m, near_m, far_rounded_m);
+}
+
 }  // namespace
 
 std::string ConfigureForRig(const geometry::StereoRig& rig, ConfigSources* sources,
@@ -82,20 +131,14 @@ std::string ConfigureForRig(const geometry::StereoRig& rig, ConfigSources* sourc
   if (!scene) return suggestion.reason;
   const std::string seen = StrFormat("median %.1f m of %zu edges %.1f s into the data",
                                      scene->median_m(), scene->depths_m.size(), scene->at_s);
-  if (suggestion.name != "driving") return suggestion.reason + "; the scene " + seen;
+  if (suggestion.name != "driving") {
+    const std::string widened = WidenDepthRangeToScene(*scene, seen, sources);
+    return suggestion.reason + (widened.empty() ? "; the scene " + seen : widened);
+  }
   // Which preset's depth range holds more of the scene, from the presets themselves.
-  auto range_of = [](const char* preset, double* near_m, double* far_m) {
-    ConfigSources named;
-    named.preset = preset;
-    Expected<pipeline::OdometryConfig> config = ResolveOdometryConfig(named);
-    if (!config) return false;
-    *near_m = 1.0 / config->mapping.inv_depth_max;
-    *far_m = 1.0 / config->mapping.inv_depth_min;
-    return true;
-  };
   double indoor_near = 0, indoor_far = 0, driving_near = 0, driving_far = 0;
-  if (!range_of("indoor", &indoor_near, &indoor_far) ||
-      !range_of("driving", &driving_near, &driving_far))
+  if (!PresetDepthRange("indoor", &indoor_near, &indoor_far) ||
+      !PresetDepthRange("driving", &driving_near, &driving_far))
     return suggestion.reason;
   const double indoor = scene->ShareWithin(indoor_near, indoor_far);
   const double driving = scene->ShareWithin(driving_near, driving_far);
@@ -139,6 +182,7 @@ Expected<pipeline::OdometryConfig> ResolveOdometryConfig(const ConfigSources& so
 std::string DescribeSources(const ConfigSources& sources) {
   std::string text = sources.preset.empty() ? "defaults" : "preset " + sources.preset;
   if (sources.sensor) text = "the sensor's settings + " + text;
+  if (!sources.scene.empty()) text += " + the measured scene's depth range";
   for (const std::string& file : sources.files)
     text += " + " + file;
   for (const std::string& name : sources.overlays)

@@ -27,13 +27,18 @@ struct ConfigSources {
   std::vector<std::string> overlays;  ///< shipped overlays by name, always the embedded ones
   std::vector<std::string> overrides;
   std::optional<SensorFacts> sensor;  ///< the rig the configuration is for, if known
+  /// What the scene's measured depths set (ConfigureForRig), applied after the preset: files,
+  /// overlays and overrides still win.
+  std::vector<ConfigEntry> scene;
 };
 
 /// Makes `sources` configure for `rig`: its sensor's settings and, when no preset is named, the
 /// preset the rig suggests — by its baseline; a car's baseline is indoor when the scene's
 /// measured depths (`scene`, from pipeline::SceneDepthProbe) fall within the indoor preset's
-/// depth range more than within the driving preset's. Returns why that preset ("" when one was
-/// named).
+/// depth range more than within the driving preset's. A smaller rig keeps the indoor preset,
+/// but when most of the scene lies beyond its depth range (a hand-held camera in a street),
+/// the range reaches twice the scene's 90th-percentile depth, as far as half a pixel of
+/// disparity (`sources->scene`). Returns why that preset ("" when one was named).
 std::string ConfigureForRig(const geometry::StereoRig& rig, ConfigSources* sources,
                             const std::optional<pipeline::SceneDepth>& scene = {});
 

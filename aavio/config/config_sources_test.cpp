@@ -2,11 +2,14 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <map>
 #include <set>
 #include <utility>
 
+#include "aavio/common/format.hpp"
 #include "aavio/config/presets.hpp"
 #include "aavio/sim/presets.hpp"
 #include "tests/test_utils.hpp"
@@ -59,8 +62,8 @@ TEST(ConfigSources, AWideRigInARoomIsIndoorByTheDepthsMeasured) {
   EXPECT_NE(ConfigureForRig(Rig("dsec"), &street, far).find("80 % within the driving"),
             std::string::npos);
   EXPECT_EQ(street.preset, "driving");
-  // A narrow rig stays indoor whatever it measured (far scenes are no reason for a car's preset);
-  // a named preset is never second-guessed.
+  // A narrow rig stays indoor whatever it measured (far scenes are no reason for a car's preset,
+  // only for a wider depth range: below); a named preset is never second-guessed.
   ConfigSources narrow;
   EXPECT_NE(ConfigureForRig(Rig("rpg"), &narrow, far).find("the scene median 12.0 m"),
             std::string::npos);
@@ -68,6 +71,50 @@ TEST(ConfigSources, AWideRigInARoomIsIndoorByTheDepthsMeasured) {
   ConfigSources named{.preset = "driving"};
   EXPECT_EQ(ConfigureForRig(Rig("dsec"), &named, near), "");
   EXPECT_EQ(named.preset, "driving");
+}
+
+// A narrow rig in a street: the indoor preset stays, its depth range reaches the scene — twice
+// its 90th-percentile depth, at most where the disparity is half a pixel; --set still wins. In
+// a room nothing changes.
+TEST(ConfigSources, ANarrowRigSeeingAStreetReachesItsDepths) {
+  const geometry::StereoRig rpg = Rig("rpg");
+  const double fb = rpg.focal_px() * rpg.baseline_m();
+  std::vector<double> street_m;
+  for (int i = 0; i < 100; ++i)
+    street_m.push_back(4.0 + 0.1 * i);  // 4-13.9 m: 11 % within 0.5-5 m, 90th percentile 13 m
+  ConfigSources street;
+  const std::string why = ConfigureForRig(rpg, &street, pipeline::SceneDepth{street_m, 0.3});
+  EXPECT_EQ(street.preset, "indoor");
+  const double far_m = std::ceil(std::min(2.0 * 13.0, fb / 0.5));
+  EXPECT_NE(
+      why.find(StrFormat("11 %% of it within the preset's 0.5-5 m: depth range 0.5-%g m", far_m)),
+      std::string::npos)
+      << why;
+  Expected<ResolvedConfig> resolved = Resolve(street);
+  ASSERT_TRUE(resolved.ok()) << resolved.status().message();
+  EXPECT_NEAR(resolved->config.mapping.inv_depth_min, 1.0 / far_m, 1e-6);
+  EXPECT_NEAR(resolved->config.mapping.temporal_stereo.max_depth_m, far_m, 1e-6);
+  EXPECT_NE(resolved->origin["mapping.inv_depth_min"].find("the measured scene"),
+            std::string::npos);
+  EXPECT_EQ(DescribeSources(street),
+            "the sensor's settings + preset indoor + the measured scene's depth range");
+
+  // Far beyond what the rig resolves: the range stops at half a pixel of disparity.
+  ConfigSources very_far;
+  ConfigureForRig(rpg, &very_far, pipeline::SceneDepth{{20.0, 40.0, 80.0, 150.0, 300.0}, 0.3});
+  Expected<pipeline::OdometryConfig> capped = ResolveOdometryConfig(very_far);
+  ASSERT_TRUE(capped.ok()) << capped.status().message();
+  EXPECT_NEAR(capped->mapping.inv_depth_min, 1.0 / std::ceil(fb / 0.5), 1e-6);
+
+  ConfigSources set{.overrides = {"mapping.inv_depth_min=0.1"}};
+  ConfigureForRig(rpg, &set, pipeline::SceneDepth{street_m, 0.3});
+  Expected<pipeline::OdometryConfig> overridden = ResolveOdometryConfig(set);
+  ASSERT_TRUE(overridden.ok()) << overridden.status().message();
+  EXPECT_EQ(overridden->mapping.inv_depth_min, 0.1);
+
+  ConfigSources room;
+  ConfigureForRig(rpg, &room, pipeline::SceneDepth{{1.0, 1.5, 2.0, 3.0, 8.0}, 0.3});
+  EXPECT_TRUE(room.scene.empty());
 }
 
 // The reference overlays take their code's budget for the rig. ESVO: 1 000 newest events on rpg's
