@@ -310,10 +310,22 @@ nlohmann::json RunRecorder::CloseFiles(std::optional<Eigen::Matrix3d>* R_out_fir
   return motion;
 }
 
+std::string RunRecorder::NeverMappedReason() const {
+  if (!counts_.NeverMapped()) return "";
+  const std::string& last = counts_.last_bootstrap_failure();
+  return StrFormat(
+      "no tick of the %zu had a map: the odometry never found a first one, so every "
+      "pose is the start pose held, no estimate%s",
+      trajectory_.size(), last.empty() ? "" : (" (the last attempt: " + last + ")").c_str());
+}
+
 void RunRecorder::Score(RunRecord* record) const {
   // Accuracy against the ground truth (what `aavio eval --run` computes, se3-aligned); why there
-  // is none goes into the summary (accuracy_error), which is written all the same.
-  if (truth_ && !trajectory_.empty()) {
+  // is none goes into the summary (accuracy_error), which is written all the same. Poses that
+  // are all the start pose held are not scored.
+  if (truth_ && !trajectory_.empty() && counts_.NeverMapped()) {
+    record->accuracy_error = FailedPrecondition(NeverMappedReason());
+  } else if (truth_ && !trajectory_.empty()) {
     Expected<TrajectoryEvaluation> e = EvaluateTrajectories(trajectory_, gt_poses_, {});
     if (e) {
       record->accuracy = std::move(*e);

@@ -122,6 +122,8 @@ class RunRecorder {
   const std::vector<geometry::StampedPose>& trajectory() const { return trajectory_; }
   /// Ticks per tracking status so far ("ok", "lost", "no_map").
   const std::map<std::string, int>& status_counts() const { return counts_.status_counts(); }
+  /// Ticks were run and none had a map (TickCounts::NeverMapped): why, else "".
+  std::string NeverMappedReason() const;
   const std::string& out_dir() const { return options_.out_dir; }
 
  private:

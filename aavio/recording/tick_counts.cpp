@@ -27,6 +27,15 @@ void TickCounts::AddTick(const pipeline::OdometryTick& t) {
   mapping_cycles_ += t.mapped ? 1 : 0;
 }
 
+bool TickCounts::NeverMapped() const {
+  if (status_counts_.empty()) return false;
+  const auto no_map = status_counts_.find("no_map");
+  int ticks = 0;
+  for (const auto& [status, n] : status_counts_)
+    ticks += n;
+  return no_map != status_counts_.end() && no_map->second == ticks;
+}
+
 void TickCounts::AddTo(nlohmann::json* summary, std::optional<TimeNs> first_tick_ns) const {
   nlohmann::json& s = *summary;
   s["dropped_events"] = dropped_events_;

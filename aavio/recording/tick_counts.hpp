@@ -31,6 +31,11 @@ class TickCounts {
   /// Ticks per tracking status so far ("ok", "lost", "no_map", "imu").
   const std::map<std::string, int>& status_counts() const { return status_counts_; }
   int mapping_cycles() const { return mapping_cycles_; }
+  /// Whether ticks were counted and none of them had a map: the odometry never bootstrapped, so
+  /// every pose is the start pose held.
+  bool NeverMapped() const;
+  /// Why the last failed (re-)initialisation found too few points ("" if none failed).
+  const std::string& last_bootstrap_failure() const { return last_bootstrap_failure_; }
   std::int64_t dropped_events() const { return dropped_events_; }
 
   /// Its keys of summary.json; `first_tick_ns`: the first tick's time, if there was one.

@@ -365,6 +365,9 @@ Expected<bool> Conclude(const RunOptions& options, const OpenedSequence& opened,
         "(`aavio info %s`)",
         record->data_s, 1e3 / setup.config.time_surface.rate_hz, options.sequence.c_str()));
   }
+  if (const std::string never = recorder.NeverMappedReason(); !never.empty() && !fed.interrupted) {
+    return FailedPrecondition(never + "\n" + options.out_dir + " holds the run's outputs");
+  }
   PrintRun(*record, printout, ctx);
   return fed.interrupted;
 }

@@ -337,6 +337,33 @@ TEST(Cli, RunOdometryWritesItsOutputsAndIsDeterministic) {
   EXPECT_EQ(r.code, kExitError);
   EXPECT_NE(r.err.find("no pose was estimated"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("--start and --duration"), std::string::npos) << r.err;
+  // A run that never found a map (a depth range of 0.5-0.56 m, the scene at 1-5 m) holds the
+  // start pose throughout: no estimate to score, with or without ground truth.
+  const std::vector<std::string> no_map = {"--quiet",    "--overwrite",
+                                           "--duration", "0.3",
+                                           "--set",      "mapping.inv_depth_min=1.8",
+                                           "--set",      "mapping.inv_depth_max=2"};
+  std::vector<std::string> args = {"run", seq, "--out", short_run};
+  args.insert(args.end(), no_map.begin(), no_map.end());
+  r = RunAavio(args);
+  EXPECT_EQ(r.code, kExitError);
+  EXPECT_NE(r.err.find("no tick of the 29 had a map: the odometry never found a first one"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("the last attempt: SGM bootstrap found"), std::string::npos) << r.err;
+  std::ifstream never_in(std::filesystem::path(short_run) / "summary.json");
+  const nlohmann::json never_summary = nlohmann::json::parse(never_in);
+  EXPECT_FALSE(never_summary.contains("accuracy"));
+  EXPECT_EQ(never_summary["status"]["no_map"].get<int>(), 29);
+  const std::string no_truth = testing::WriteFile(
+      dir / "no_truth" / "sequence.yaml",
+      "calibration: " + seq + "/calibration\nevents:\n  left: " + seq +
+          "/events/left/events.h5\n  right: " + seq + "/events/right/events.h5\n");
+  args = {"run", no_truth, "--out", short_run};
+  args.insert(args.end(), no_map.begin(), no_map.end());
+  r = RunAavio(args);
+  EXPECT_EQ(r.code, kExitError);
+  EXPECT_NE(r.err.find("no tick of the 29 had a map"), std::string::npos) << r.err;
 
   // `aavio report` of the two runs on one page: one html file with every figure embedded, and
   // nothing left behind (its working folder is a temporary one).
