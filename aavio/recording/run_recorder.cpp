@@ -323,8 +323,9 @@ void RunRecorder::Score(RunRecord* record) const {
   // Accuracy against the ground truth (what `aavio eval --run` computes, se3-aligned); why there
   // is none goes into the summary (accuracy_error), which is written all the same. Poses that
   // are all the start pose held are not scored.
-  if (truth_ && !trajectory_.empty() && counts_.NeverMapped()) {
-    record->accuracy_error = FailedPrecondition(NeverMappedReason());
+  const std::string never_mapped = NeverMappedReason();
+  if (truth_ && !trajectory_.empty() && !never_mapped.empty()) {
+    record->accuracy_error = FailedPrecondition(never_mapped);
   } else if (truth_ && !trajectory_.empty()) {
     Expected<TrajectoryEvaluation> e = EvaluateTrajectories(trajectory_, gt_poses_, {});
     if (e) {
