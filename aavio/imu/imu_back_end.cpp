@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "aavio/geometry/rotation.hpp"
+#include "aavio/imu/standstill.hpp"
 
 namespace aavio::imu {
 namespace {
@@ -28,13 +29,9 @@ constexpr double kMaxGravityError = 1.0;  // m/s², of the first, unconstrained 
 // it was integrated with (its first-order correction would be off).
 constexpr double kReintegrateGyro = 0.005, kReintegrateAccel = 0.05;
 // At rest: moving slower than this by the estimate (an IMU cannot tell a steady motion from
-// rest; the estimate carried through a braking keeps a few tenths of a m/s of its error), and
-// over the last kRestSpanS the mean rate within this of the gyroscope's bias (whose estimate may
-// be 0.02 rad/s off after a few seconds of driving straight), every
-// accelerometer axis steady and the mean reading gravity alone (not braking). Over 0.2 s, not a
-// tick: ten readings' spread is too noisy a test.
-constexpr double kRestSpeed = 0.5, kRestGyroRadS = 0.03, kRestAccelStd = 0.15,
-                 kRestAccelMeanMs2 = 0.3, kRestSpanS = 0.2;
+// rest; the estimate carried through a braking keeps a few tenths of a m/s of its error), and the
+// readings those of a sensor at rest (standstill.hpp).
+constexpr double kRestSpeed = 0.5;
 // The window: tracked poses every 50 ms over the last 2 s (on the rpg twins, 1 or 4 s and 25 or
 // 100 ms bridged a dark second worse, and tracked no better).
 constexpr double kWindowS = 2.0, kFrameIntervalS = 0.05;
@@ -352,25 +349,8 @@ Expected<geometry::RigidTransform> ImuBackEnd::Predict(TimeNs t_ns) const {
 
 bool ImuBackEnd::AtRest(TimeNs t_begin_ns, TimeNs t_end_ns) const {
   if (!ready_ || last_v_.norm() > kRestSpeed) return false;
-  t_begin_ns = std::min(t_begin_ns, t_end_ns - SecondsToNs(kRestSpanS));
-  int n = 0;
-  Eigen::Vector3d gyro = Eigen::Vector3d::Zero();
-  Eigen::Vector3d sum = Eigen::Vector3d::Zero(), sum2 = Eigen::Vector3d::Zero();
-  const auto first =
-      std::lower_bound(samples_.begin(), samples_.end(), t_begin_ns,
-                       [](const ImuSample& s, TimeNs t_ns) { return s.t_ns < t_ns; });
-  for (auto it = first; it != samples_.end() && it->t_ns <= t_end_ns; ++it) {
-    gyro += it->gyro_rad_s;
-    sum += it->accel_m_s2;
-    sum2 += it->accel_m_s2.cwiseProduct(it->accel_m_s2);
-    ++n;
-  }
-  if (n < 2) return false;
-  const Eigen::Vector3d mean = sum / n;
-  const Eigen::Vector3d var = sum2 / n - mean.cwiseProduct(mean);
-  return (gyro / n - state_.gyro_bias).norm() < kRestGyroRadS &&
-         var.maxCoeff() < kRestAccelStd * kRestAccelStd &&
-         std::abs((mean - state_.accel_bias).norm() - kGravityMS2) < kRestAccelMeanMs2;
+  return RestReading(samples_, t_begin_ns, t_end_ns, state_.gyro_bias, state_.accel_bias)
+      .has_value();
 }
 
 }  // namespace aavio::imu

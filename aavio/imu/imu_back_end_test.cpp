@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <random>
 #include <utility>
 #include <vector>
@@ -145,9 +146,10 @@ TEST(ImuBackEnd, RestartsAfterAGapInTheImu) {
 
 // A camera that does not turn, at `speed` m/s along x, IMU readings with noise (accelerometer:
 // `accel_noise` m/s² a reading), tracked for 1.5 s; over the last 0.2 s the gyroscope reads
-// `turn` rad/s about z and the accelerometer a braking of `braking` m/s² along x: whether the
-// last tick is rest.
-bool AtRestAfter(double speed, double turn, double braking = 0.0, double accel_noise = 0.05) {
+// `turn` rad/s about z and the accelerometer adds `a_x(t)` m/s² along x (t from the last 0.2 s's
+// start): whether the last tick is rest.
+bool AtRestAfter(double speed, double turn, const std::function<double(double)>& a_x,
+                 double accel_noise = 0.05) {
   ImuBackEnd back_end(ImuConfig{}, kImuCam);
   const RigidTransform T_cam_imu = kImuCam.Inverse();
   std::mt19937_64 rng(7);
@@ -160,7 +162,7 @@ bool AtRestAfter(double speed, double turn, double braking = 0.0, double accel_n
       const RigidTransform T_world_imu =
           RigidTransform(Eigen::Matrix3d::Identity(), {speed * NsToSeconds(t), 0, 0}) * T_cam_imu;
       const Eigen::Vector3d rate(0, 0, last ? turn : 0.0);
-      const Eigen::Vector3d a_world(last ? -braking : 0.0, 0, 0);
+      const Eigen::Vector3d a_world(last ? a_x(NsToSeconds(t) - 1.3) : 0.0, 0, 0);
       samples.push_back({t, rate + 0.002 * geometry::DrawZyx(n, rng),
                          T_world_imu.R.transpose() * (a_world - kGravity) +
                              accel_noise * geometry::DrawZyx(n, rng)});
@@ -175,15 +177,24 @@ bool AtRestAfter(double speed, double turn, double braking = 0.0, double accel_n
 }
 
 TEST(ImuBackEnd, AtRestOnlyStillAndSlow) {
-  EXPECT_TRUE(AtRestAfter(0.0, 0.0));
-  // A consumer IMU's noise (the simulator's typical sensor: 0.12 m/s² a reading at 1 kHz).
-  EXPECT_TRUE(AtRestAfter(0.0, 0.0, 0.0, 0.12));
+  const auto none = [](double) { return 0.0; };
+  EXPECT_TRUE(AtRestAfter(0.0, 0.0, none));
+  // A consumer IMU's noise (the simulator's typical sensor: 0.12 m/s² a reading at 1 kHz), and
+  // five times more.
+  EXPECT_TRUE(AtRestAfter(0.0, 0.0, none, 0.12));
+  EXPECT_TRUE(AtRestAfter(0.0, 0.0, none, 0.6));
+  // A vibration that moves nothing: 2 m/s² at 80 Hz (0.1 mm).
+  EXPECT_TRUE(AtRestAfter(0.0, 0.0, [](double t) { return 2.0 * std::sin(2 * M_PI * 80 * t); }));
   // Creeping at 0.2 m/s: the estimate carried through a braking is no better than that.
-  EXPECT_TRUE(AtRestAfter(0.2, 0.0));
+  EXPECT_TRUE(AtRestAfter(0.2, 0.0, none));
   // The same readings moving steadily at 1 m/s: an IMU cannot tell; the velocity estimate can.
-  EXPECT_FALSE(AtRestAfter(1.0, 0.0));
-  EXPECT_FALSE(AtRestAfter(0.0, 0.1));       // turning
-  EXPECT_FALSE(AtRestAfter(0.2, 0.0, 1.0));  // still braking
+  EXPECT_FALSE(AtRestAfter(1.0, 0.0, none));
+  EXPECT_FALSE(AtRestAfter(0.0, 0.1, none));  // turning
+  // Braking hard (3 m/s²: the readings are not gravity alone); a hand's sway (1.5 m/s² at 2 Hz:
+  // 12 cm/s); a start (1 m/s², from 0.1 s into the span).
+  EXPECT_FALSE(AtRestAfter(0.2, 0.0, [](double) { return -3.0; }));
+  EXPECT_FALSE(AtRestAfter(0.0, 0.0, [](double t) { return 1.5 * std::sin(2 * M_PI * 2 * t); }));
+  EXPECT_FALSE(AtRestAfter(0.0, 0.0, [](double t) { return t > 0.1 ? 1.0 : 0.0; }));
   ImuBackEnd fresh(ImuConfig{}, kImuCam);
   EXPECT_FALSE(fresh.AtRest(0, kNsPerS));  // nothing estimated
 }

@@ -18,6 +18,7 @@ ImuPrior::ImuPrior(const imu::ImuConfig& config, const geometry::RigidTransform&
 
 void ImuPrior::Restart(TimeNs t_ns, const geometry::RigidTransform& T_world_cam) {
   if (!bias_) bias_.emplace(config_, t_ns);
+  standstill_.Restart();
   if (back_end_) {
     back_end_->Restart();
     back_end_->AddPose(t_ns, T_world_cam, /*tracked=*/false);
@@ -36,6 +37,14 @@ TickPrior ImuPrior::ForTick(std::span<const imu::ImuSample> imu, TimeNs t_prev_n
   }
   if (config_.mode != imu::ImuMode::kOff && prior.delta_R_imu)
     prior.delta_R_cam = imu::ImuToCameraRotation(*prior.delta_R_imu, R_imu_cam_);
+  if (config_.mode == imu::ImuMode::kGyro) {
+    // A standstill: the pose holds without registering, however long it lasts.
+    standstill_.AddSamples(imu);
+    prior.at_rest = prior.hold =
+        standstill_.Update(t_prev_ns, t_ns, prior.delta_R_imu, gyro_bias());
+    if (prior.at_rest) prior.T_world_cur = T_world_prev;
+    return prior;
+  }
   // Full mode: the back-end's 6-DoF prediction; at rest (a standstill the IMU sees), the pose
   // holds. A tick the events cannot register is carried on the IMU (the prediction), however long
   // a standstill lasts, else for max_bridge_s since the last tracked tick (or the end of a
@@ -64,6 +73,8 @@ void ImuPrior::AddRegisteredTick(std::span<const imu::ImuSample> imu, TimeNs t_p
 
 void ImuPrior::AddPose(TimeNs t_ns, const geometry::RigidTransform& T_world_cam, bool registered) {
   if (back_end_) back_end_->AddPose(t_ns, T_world_cam, registered);
+  if (config_.mode != imu::ImuMode::kGyro || !registered) return;
+  standstill_.AddRegistered(t_ns, T_world_cam.t);
 }
 
 Eigen::Vector3d ImuPrior::gyro_bias() const {

@@ -1,8 +1,8 @@
 #pragma once
 /// What the IMU tells tracking at each tick (docs/tracking.md): the gyroscope's rotation over the
-/// tick (the paper's prior, with the bias estimated as imu.bias says), and with imu.mode full the
-/// back-end's 6-DoF prediction, whether the IMU sees a standstill, and for how long ticks the
-/// events do not register may be carried on it. Fed the IMU samples and the tracked poses.
+/// tick (the paper's prior, with the bias estimated as imu.bias says), whether the camera stands
+/// still, and with imu.mode full the back-end's 6-DoF prediction and for how long ticks the events
+/// do not register may be carried on it. Fed the IMU samples and the tracked poses.
 
 #include <optional>
 #include <span>
@@ -12,6 +12,7 @@
 #include "aavio/imu/imu_back_end.hpp"
 #include "aavio/imu/imu_config.hpp"
 #include "aavio/imu/imu_sample.hpp"
+#include "aavio/imu/standstill_detector.hpp"
 
 namespace aavio::tracking {
 
@@ -21,10 +22,15 @@ struct TickPrior {
   std::optional<Eigen::Matrix3d> delta_R_imu;
   /// ... in the camera frame, when imu.mode uses the gyroscope (the registration's prior).
   std::optional<Eigen::Matrix3d> delta_R_cam;
-  /// imu.mode full, once the back-end has an estimate: the pose it predicts (the previous pose
-  /// at rest).
+  /// imu.mode full, once the back-end has an estimate: the pose it predicts; at rest (any mode
+  /// using the IMU): the previous pose.
   std::optional<geometry::RigidTransform> T_world_cur;
-  bool at_rest = false;                ///< the back-end sees a standstill over the tick
+  /// A standstill over the tick: the readings of a sensor at rest (standstill.hpp) and a low speed
+  /// (the back-end's estimate; with imu.mode gyro, standstill_detector.hpp).
+  bool at_rest = false;
+  /// imu.mode gyro at a standstill: the pose holds and the tick is not registered (a still
+  /// camera's events are noise and fading edges, on which a registration only slides).
+  bool hold = false;
   bool can_bridge = false;             ///< events missing: the tick may be carried on the IMU
   bool can_bridge_divergence = false;  ///< events that do not register: ... likewise
 };
@@ -58,6 +64,7 @@ class ImuPrior {
   Eigen::Matrix3d R_imu_cam_;
   std::optional<imu::GyroBiasEstimator> bias_;
   std::optional<imu::ImuBackEnd> back_end_;  ///< imu.mode full
+  imu::StandstillDetector standstill_;       ///< imu.mode gyro
 };
 
 }  // namespace aavio::tracking

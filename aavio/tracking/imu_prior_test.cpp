@@ -1,8 +1,10 @@
 // The IMU's prior for a tick: the gyroscope's rotation (in the camera frame when the mode uses
-// it), and in full mode the back-end's pose and how long a tick may be carried on it.
+// it), a standstill, and in full mode the back-end's pose and how long a tick may be carried on it.
 #include "aavio/tracking/imu_prior.hpp"
 
 #include <gtest/gtest.h>
+
+#include <random>
 
 #include "aavio/geometry/rotation.hpp"
 #include "aavio/imu/imu_test_motion.hpp"
@@ -101,6 +103,92 @@ TEST(ImuPrior, FullModePredictsThePoseAndBoundsTheBridge) {
   const TickPrior too_late =
       prior.ForTick({}, t + kTickNs, t + 2 * kTickNs, *next.T_world_cur, config.max_bridge_s + 0.1);
   EXPECT_FALSE(too_late.can_bridge || too_late.can_bridge_divergence);
+}
+
+// Readings of an IMU that does not turn and accelerates by `a_world(t)` (noise and biases of a
+// consumer IMU at 1 kHz, as tm::Imu's), over [0, t_end_s].
+template <typename Accel>
+std::vector<imu::ImuSample> StillImu(double t_end_s, const Accel& a_world) {
+  std::mt19937_64 rng(11);
+  std::normal_distribution<double> n(0.0, 1.0);
+  const Eigen::Matrix3d R_world_imu = tm::Motion{}.R(0.0);
+  std::vector<imu::ImuSample> samples;
+  for (TimeNs t = 0; t <= SecondsToNs(t_end_s); t += kNsPerMs) {
+    samples.push_back({t, tm::kGyroBias + 0.003 * geometry::DrawZyx(n, rng),
+                       R_world_imu.transpose() * (a_world(NsToSeconds(t)) - tm::kGravity) +
+                           tm::kAccelBias + 0.12 * geometry::DrawZyx(n, rng)});
+  }
+  return samples;
+}
+
+// Ticks from 0 to t_end_s, the camera's tracked position at `position(t)` (registered unless
+// held): the first tick and the last that hold (-1 if none).
+template <typename Position>
+std::pair<double, double> HeldTicks(ImuPrior& prior, const std::vector<imu::ImuSample>& samples,
+                                    double t_end_s, const Position& position) {
+  const Eigen::Matrix3d R = tm::Motion{}.WorldCam(0.0).R;
+  geometry::RigidTransform T_prev(R, position(0.0));
+  prior.Restart(0, T_prev);
+  double first = -1.0, last = -1.0;
+  for (TimeNs t = kTickNs; t <= SecondsToNs(t_end_s); t += kTickNs) {
+    const TickPrior tick =
+        prior.ForTick(Window(samples, t - kTickNs, t), t - kTickNs, t, T_prev, 0);
+    EXPECT_TRUE(!tick.hold || tick.at_rest);
+    if (tick.hold) {
+      EXPECT_TRUE(tick.T_world_cur && tick.T_world_cur->t == T_prev.t);
+      if (first < 0.0) first = NsToSeconds(t);
+      last = NsToSeconds(t);
+      prior.AddPose(t, T_prev, /*registered=*/false);
+    } else {
+      T_prev = geometry::RigidTransform(R, position(NsToSeconds(t)));
+      prior.AddPose(t, T_prev, /*registered=*/true);
+    }
+  }
+  return {first, last};
+}
+
+TEST(ImuPrior, GyroModeHoldsAStandstillUntilTheCameraMovesOff) {
+  ImuPrior prior(WithTrueBias(imu::ImuMode::kGyro), tm::kImuCam);
+  // Still for 1.5 s, then pulling away smoothly at 0.5 m/s² without turning: what the readings
+  // alone (gravity and a little more, steady) would take for rest.
+  const Eigen::Vector3d away = Eigen::Vector3d(1, 1, 0).normalized();
+  const auto accel = [&](double t) -> Eigen::Vector3d {
+    return t < 1.5 ? Eigen::Vector3d::Zero() : Eigen::Vector3d(0.5 * away);
+  };
+  const auto position = [&](double t) -> Eigen::Vector3d {
+    return Eigen::Vector3d(0.3, -0.1, 0.2) + (t < 1.5 ? 0.0 : 0.25 * (t - 1.5) * (t - 1.5)) * away;
+  };
+  const std::vector<imu::ImuSample> samples = StillImu(2.0, accel);
+  const auto [first, last] = HeldTicks(prior, samples, 2.0, position);
+  // Held once the tracked poses have shown 0.2 s of no motion, until the readings move 0.2 m/s²
+  // from those the standstill began with (0.4 s after the start, at 4 cm/s).
+  EXPECT_NEAR(first, 0.21, 0.015);
+  EXPECT_GT(last, 1.5);
+  EXPECT_LT(last, 1.9);
+  // Pulling away at 0.1 m/s², under that change: the velocity integrated since the standstill
+  // began ends it within a second (at most 5 cm gone).
+  ImuPrior gentle(WithTrueBias(imu::ImuMode::kGyro), tm::kImuCam);
+  const auto slow_accel = [&](double t) -> Eigen::Vector3d {
+    return t < 1.5 ? Eigen::Vector3d::Zero() : Eigen::Vector3d(0.1 * away);
+  };
+  const auto slow_position = [&](double t) -> Eigen::Vector3d {
+    return Eigen::Vector3d(0.3, -0.1, 0.2) + (t < 1.5 ? 0.0 : 0.05 * (t - 1.5) * (t - 1.5)) * away;
+  };
+  const double slow_last = HeldTicks(gentle, StillImu(3.5, slow_accel), 3.5, slow_position).second;
+  EXPECT_GT(slow_last, 1.9);
+  EXPECT_LT(slow_last, 2.8);
+  // The same readings while the tracked camera moves steadily at 1 m/s: never held.
+  ImuPrior moving(WithTrueBias(imu::ImuMode::kGyro), tm::kImuCam);
+  const auto steady = [](double t) -> Eigen::Vector3d { return {t, 0, 0}; };
+  const std::vector<imu::ImuSample> still =
+      StillImu(1.0, [](double) { return Eigen::Vector3d::Zero(); });
+  EXPECT_EQ(HeldTicks(moving, still, 1.0, steady).first, -1.0);
+  // Full mode leaves the standstill to its back-end; mode off knows none.
+  for (const imu::ImuMode mode : {imu::ImuMode::kFull, imu::ImuMode::kOff}) {
+    ImuPrior other(WithTrueBias(mode), tm::kImuCam);
+    const auto rest = [](double) { return Eigen::Vector3d(0.3, -0.1, 0.2); };
+    EXPECT_EQ(HeldTicks(other, still, 1.0, rest).first, -1.0);
+  }
 }
 
 }  // namespace

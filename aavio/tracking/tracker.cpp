@@ -129,7 +129,10 @@ TrackingResult Tracker::Track(const events::Observation& obs, const cv::Mat& val
   result.T_world_predicted = predicted;
   result.status = TrackingStatus::kNoMap;
   if (map_ && static_cast<int>(map_->points_world.size()) >= config_.min_map_points) {
-    if (Starved(obs.new_events_left)) {
+    if (prior.hold) {
+      // A standstill the IMU sees (imu_prior.hpp): the pose holds.
+      result.status = TrackingStatus::kImuOnly;
+    } else if (Starved(obs.new_events_left)) {
       // Nothing new to register on: the time surface only fades. Hold the prediction.
       result.status = prior.can_bridge ? TrackingStatus::kImuOnly : TrackingStatus::kLost;
       result.lost_reason = prior.can_bridge ? LostReason::kNone : LostReason::kNoEvents;
