@@ -15,6 +15,12 @@
 /// bias has turned the reading too far (0.01 rad/s over 1 s: 0.1 m/s², 5 cm/s integrated) and it
 /// is forgotten; a shorter standstill may have been the last centimetres of a braking, read as
 /// rest, and the reading it began with is no reference.
+///
+/// What no reading can tell: a camera whose track moved slower than kMaxSpeed over 0.2 s while it
+/// accelerated steadily (under 1 m/s², from rest or from a standstill shorter than
+/// kMinRememberedS) reads a steady specific force, and is held as standing until that changes by
+/// kMaxReadingDrift; registration then resumes from the held pose. A gravity direction known from
+/// the tracking (the accelerometer's check measures one) would tell it, and is not consulted.
 
 #include <Eigen/Core>
 #include <optional>
