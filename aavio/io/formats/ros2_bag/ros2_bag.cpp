@@ -160,8 +160,16 @@ class Db final : public Storage {
     while (sqlite3_step(q) == SQLITE_ROW) {
       const char* type = reinterpret_cast<const char*>(sqlite3_column_text(q, 2));
       if (type && std::strcmp(type, kEventPacketType) == 0) {
-        topics.emplace_back(sqlite3_column_int64(q, 0),
-                            reinterpret_cast<const char*>(sqlite3_column_text(q, 1)));
+        const char* name = reinterpret_cast<const char*>(sqlite3_column_text(q, 1));
+        if (!name) {
+          const std::int64_t id = sqlite3_column_int64(q, 0);
+          sqlite3_finalize(q);
+          return InvalidArgument(path_ + ": the topics table's event topic of id " +
+                                 std::to_string(id) +
+                                 " has no name: the bag is corrupt; record it again, or give the "
+                                 "topic its name in the topics table");
+        }
+        topics.emplace_back(sqlite3_column_int64(q, 0), name);
       }
     }
     sqlite3_finalize(q);

@@ -345,6 +345,27 @@ TEST(Ros2Bag, BadBagsAreClearErrors) {
   EXPECT_NE(e.status().message().find("x.mcap: not an MCAP file"), std::string::npos)
       << e.status().message();
 
+  // A topic whose name is NULL (a corrupt bag's metadata): an error, not a crash.
+  const std::string unnamed = (aavio::testing::ScratchDir() / "unnamed.db3").string();
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open(unnamed.c_str(), &db), SQLITE_OK);
+  const std::string sql =
+      "CREATE TABLE topics(id INTEGER PRIMARY KEY, name TEXT, type TEXT);"
+      "CREATE TABLE messages(id INTEGER PRIMARY KEY, topic_id INTEGER, timestamp INTEGER, "
+      "data BLOB);"
+      "INSERT INTO topics VALUES(7, NULL, '" +
+      std::string(kPacket) + "');";
+  ASSERT_EQ(sqlite3_exec(db, sql.c_str(), nullptr, nullptr, nullptr), SQLITE_OK);
+  sqlite3_close(db);
+  for (const Status& status : {ListRos2EventTopics(unnamed).status(),
+                               Ros2BagEventStream::Open(unnamed, "", {}).status()}) {
+    ASSERT_FALSE(status.ok());
+    EXPECT_NE(
+        status.message().find("unnamed.db3: the topics table's event topic of id 7 has no name"),
+        std::string::npos)
+        << status.message();
+  }
+
   const std::string text = (aavio::testing::ScratchDir() / "notabag.db3").string();
   std::ofstream(text) << "hello";
   auto f = Ros2BagEventStream::Open(text, "", {});
