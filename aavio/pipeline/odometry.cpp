@@ -6,6 +6,8 @@
 #include <optional>
 #include <utility>
 
+#include "aavio/mapping/static_stereo.hpp"
+
 namespace aavio::pipeline {
 namespace {
 
@@ -15,6 +17,17 @@ constexpr TimeNs kMaxImuGapNs = 50 * kNsPerMs;
 
 tracking::Camera CameraOf(const geometry::StereoRig& rig) {
   return {rig.width(), rig.height(), rig.focal_px(), rig.cx_left(), rig.cy()};
+}
+
+// Tracking's stereo check accepts matches as static stereo does; its row search reaches from
+// infinity to twice the nearest mapped depth's disparity (a mover may come nearer than the map).
+tracking::StereoCheckRig StereoCheckRigOf(const geometry::StereoRig& rig,
+                                          const OdometryConfig& config) {
+  const mapping::RectifiedStereo stereo = mapping::RectifiedStereo::FromRig(rig);
+  const mapping::DisparityRange range =
+      mapping::StaticDisparityRange(stereo, config.mapping.inv_depth_range());
+  return {stereo.fb(), stereo.cx_left - stereo.cx_right, 0, 2 * range.max,
+          config.mapping.static_stereo.zncc_threshold};
 }
 
 // The mapping period: a whole number of ticks.
@@ -34,7 +47,8 @@ Odometry::Odometry(const geometry::StereoRig& rig, const OdometryConfig& config,
       builder_(rectification_, rig.width(), rig.height(), RepresentationConfigOf(config), start_ns),
       tracker_(CameraOf(rig), config.tracking, config.imu,
                rig.T_imu_rect_left().value_or(geometry::RigidTransform()),
-               static_cast<std::uint64_t>(config.pipeline.random_seed)),
+               static_cast<std::uint64_t>(config.pipeline.random_seed),
+               StereoCheckRigOf(rig, config)),
       camera_(CameraOf(rig)),
       decay_(config.time_surface.decay_ms, config.time_surface.adaptive_decay),
       mapping_(stereo_, rectification_.left.valid_mask, config.mapping,
@@ -214,9 +228,10 @@ bool Odometry::CycleDue(TimeNs t_ns) {
 Status Odometry::Observe(TimeNs t_ns, bool cycle_due, events::Observation* obs,
                          OdometryTick* tick) {
   const bool maps_here = run_mapping_ && (!mapping_.initialized() || cycle_due);
-  AAVIO_RETURN_IF_ERROR(builder_.Build(
-      t_ns, obs,
-      {.right_ts = maps_here, .edges = maps_here || !run_mapping_, .decay_ms = decay_.decay_ms()}));
+  AAVIO_RETURN_IF_ERROR(builder_.Build(t_ns, obs,
+                                       {.right_ts = maps_here || config_.tracking.stereo_check,
+                                        .edges = maps_here || !run_mapping_,
+                                        .decay_ms = decay_.decay_ms()}));
   ++ticks_;
   tick->t_ns = t_ns;
   tick->new_events_left = obs->new_events_left;
@@ -276,6 +291,7 @@ bool Odometry::ImuContradicts(TimeNs t_ns, const tracking::TrackingResult& track
   }
   tick->registration_iterations = tracked.registration.iterations;
   if (tracked.registered) tick->registration_stop = tracked.registration.stop;
+  tick->stereo_left_out = tracked.stereo_left_out;
   tick->tracking_ms = tracked.prediction_ms + tracked.registration_ms;
   tick->prediction_ms = tracked.prediction_ms;
   tick->imu_state = tracker_.imu_state();

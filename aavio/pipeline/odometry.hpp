@@ -58,6 +58,7 @@ struct OdometryTick {
   int registration_iterations = 0;
   /// Why the registration's LM stopped, where it ran.
   std::optional<tracking::RegistrationStop> registration_stop;
+  int stereo_left_out = 0;   ///< map points tracking.stereo_check left out of the registration
   double tracking_ms = 0.0;  ///< prediction + registration
   double prediction_ms = 0.0;
   events::RepresentationTimings representation;

@@ -7,8 +7,12 @@ void TickCounts::AddTick(const pipeline::OdometryTick& t) {
   status_counts_[tracking::TrackingStatusName(t.status)]++;
   if (t.status == tracking::TrackingStatus::kLost)
     lost_reasons_[tracking::LostReasonName(t.lost_reason)]++;
-  if (t.registration_stop)
+  if (t.registration_stop) {
     registration_stops_[tracking::RegistrationStopName(*t.registration_stop)]++;
+    ++registered_ticks_;
+  }
+  stereo_left_out_ += t.stereo_left_out;
+  stereo_ticks_ += t.stereo_left_out > 0 ? 1 : 0;
   if (t.status == tracking::TrackingStatus::kImuOnly) {
     // Stretches carried on the IMU alone, [first tick, last tick] in data seconds.
     const double at = NsToSeconds(t.t_ns - begin_ns_);
@@ -42,6 +46,11 @@ void TickCounts::AddTo(nlohmann::json* summary, std::optional<TimeNs> first_tick
   s["status"] = status_counts_;
   s["lost_reasons"] = lost_reasons_;
   s["registration_stops"] = registration_stops_;
+  // tracking.stereo_check: the ticks it left map points out on, and how many per registration.
+  s["stereo_check"] = {
+      {"ticks_leaving_points_out", stereo_ticks_},
+      {"points_left_out_per_registration",
+       registered_ticks_ > 0 ? static_cast<double>(stereo_left_out_) / registered_ticks_ : 0.0}};
   s["imu_only"] = nlohmann::json::array();
   for (const auto& [from, to] : imu_only_)
     s["imu_only"].push_back({from, to});

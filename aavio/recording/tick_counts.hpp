@@ -1,8 +1,8 @@
 #pragma once
 /// What a run's ticks and mapping cycles said, counted for summary.json: the tracking status of
 /// every tick and why ticks were lost, why the registration stopped, the stretches carried on
-/// the IMU alone, bootstraps (the first, the failed attempts), re-initialisations, mapping
-/// cycles run and skipped, and the events dropped in bursts.
+/// the IMU alone, the map points the stereo check left out, bootstraps (the first, the failed
+/// attempts), re-initialisations, mapping cycles run and skipped, and the events dropped in bursts.
 
 #include <array>
 #include <map>
@@ -49,6 +49,8 @@ class TickCounts {
   std::int64_t dropped_events_ = 0;  // by pipeline.max_buffered_events
   int bootstraps_ = 0, reinitialisations_ = 0, skipped_cycles_ = 0, mapping_cycles_ = 0;
   int bootstrap_failures_ = 0;
+  int registered_ticks_ = 0, stereo_ticks_ = 0;  // tracking.stereo_check's
+  std::int64_t stereo_left_out_ = 0;
   std::optional<TimeNs> first_bootstrap_ns_;  // data time of the first map
   std::string last_bootstrap_failure_;
 };

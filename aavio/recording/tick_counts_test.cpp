@@ -27,6 +27,7 @@ TEST(TickCounts, CountsWhatTheTicksSaid) {
   for (double t : {1.03, 1.04}) {
     pipeline::OdometryTick ok = Tick(t, TrackingStatus::kOk);
     ok.registration_stop = tracking::RegistrationStop::kConverged;
+    ok.stereo_left_out = t < 1.035 ? 30 : 0;
     counts.AddTick(ok);
   }
   for (double t : {1.05, 1.06, 1.07})  // one stretch on the IMU
@@ -53,6 +54,8 @@ TEST(TickCounts, CountsWhatTheTicksSaid) {
   EXPECT_EQ(s["lost_reasons"]["cost_grew"], 1);
   EXPECT_EQ(s["registration_stops"]["converged"], 2);
   EXPECT_EQ(s["registration_stops"]["max_iterations"], 1);
+  EXPECT_EQ(s["stereo_check"]["ticks_leaving_points_out"], 1);
+  EXPECT_NEAR(s["stereo_check"]["points_left_out_per_registration"].get<double>(), 10.0, 1e-12);
   ASSERT_EQ(s["imu_only"].size(), 2u);
   EXPECT_NEAR(s["imu_only"][0][0].get<double>(), 0.05, 1e-9);
   EXPECT_NEAR(s["imu_only"][0][1].get<double>(), 0.07, 1e-9);

@@ -119,16 +119,22 @@ const char* RegistrationStopName(RegistrationStop stop) {
 }
 
 Registration::Registration(std::span<const Eigen::Vector3d> points_ref, const Camera& camera,
-                           const TrackingConfig& config, std::uint64_t seed)
+                           const TrackingConfig& config, std::uint64_t seed,
+                           const std::function<bool(const Eigen::Vector3d& p_ref)>& keep)
     : camera_(camera), config_(config) {
   // A random subset of max_points (partial Fisher–Yates, platform-independent draws).
   std::vector<std::size_t> order(points_ref.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
   std::mt19937_64 rng(seed);
-  const std::size_t n = std::min(order.size(), static_cast<std::size_t>(config.max_points));
-  for (std::size_t i = 0; i < n; ++i) {
+  const std::size_t n = static_cast<std::size_t>(config.max_points);
+  for (std::size_t i = 0; i < order.size() && points_.size() < n; ++i) {
     std::swap(order[i], order[i + static_cast<std::size_t>(rng() % (order.size() - i))]);
-    points_.push_back(points_ref[order[i]]);
+    const Eigen::Vector3d& p = points_ref[order[i]];
+    if (keep && !keep(p)) {
+      ++left_out_;
+      continue;
+    }
+    points_.push_back(p);
   }
 }
 

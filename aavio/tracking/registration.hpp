@@ -10,6 +10,7 @@
 ///   ∂q/∂δ = −Rᵀ, ∂q/∂c = 2 Rᵀ [p]×  (at θ = 0, (R, t) = T_ref,cur, p in the reference frame).
 
 #include <Eigen/Core>
+#include <functional>
 #include <opencv2/core/mat.hpp>
 #include <optional>
 #include <random>
@@ -60,9 +61,11 @@ struct RegistrationResult {
 class Registration {
  public:
   /// `points_ref`: the map in its reference frame. A random subset of max_points is drawn from
-  /// `seed` (same seed, same subset).
+  /// `seed` (same seed, same subset). With `keep`, a drawn point it rejects is left out and the
+  /// draw goes on until max_points are kept or the map is exhausted (left_out() counts them).
   Registration(std::span<const Eigen::Vector3d> points_ref, const Camera& camera,
-               const TrackingConfig& config, std::uint64_t seed);
+               const TrackingConfig& config, std::uint64_t seed,
+               const std::function<bool(const Eigen::Vector3d& p_ref)>& keep = {});
 
   /// LM from T_ref_cur_init. With `R_ref_cur_prior` and config.gyro_rotation_weight > 0 the cost
   /// also holds weight·‖log(R R_priorᵀ)‖² [deg²] (the gyroscope's rotation as a soft prior); with
@@ -78,6 +81,7 @@ class Registration {
                  Eigen::Matrix<double, Eigen::Dynamic, 6>* jacobian, int* valid) const;
 
   std::size_t size() const { return points_.size(); }
+  int left_out() const { return left_out_; }  ///< drawn points `keep` rejected
   const std::vector<Eigen::Vector3d>& points() const { return points_; }  ///< the chosen subset
 
  private:
@@ -97,6 +101,7 @@ class Registration {
   std::vector<Eigen::Vector3d> points_;  // the chosen subset, reference frame
   Camera camera_;
   TrackingConfig config_;
+  int left_out_ = 0;
 };
 
 }  // namespace aavio::tracking

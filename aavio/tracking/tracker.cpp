@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 
 #include "aavio/geometry/rotation.hpp"
 
@@ -91,8 +92,12 @@ geometry::RigidTransform PredictPose(
 
 Tracker::Tracker(const Camera& camera, const TrackingConfig& config,
                  const imu::ImuConfig& imu_config, const geometry::RigidTransform& T_imu_cam,
-                 std::uint64_t seed)
-    : camera_(camera), config_(config), imu_(imu_config, T_imu_cam), seed_(seed) {}
+                 std::uint64_t seed, const std::optional<StereoCheckRig>& stereo)
+    : camera_(camera),
+      config_(config),
+      stereo_(config.stereo_check ? stereo : std::nullopt),
+      imu_(imu_config, T_imu_cam),
+      seed_(seed) {}
 
 bool Tracker::Starved(std::int64_t new_events) const {
   // Relative to what this sensor and scene gave lately (8 tracked ticks at least), so that no
@@ -175,10 +180,21 @@ geometry::RigidTransform Tracker::Register(const events::Observation& obs,
   for (const Eigen::Vector3d& p : map_->points_world)
     points_ref.push_back(T_ref_world * p);
   const TimeNs since_origin_ns = obs.t_ns - seed_origin_ns_.value_or(0);
-  const Registration registration(points_ref, camera_, config_,
-                                  seed_ ^ static_cast<std::uint64_t>(since_origin_ns));
-  const RegistrationImages images{obs.negative_ts_left, obs.grad_u, obs.grad_v, valid_mask};
   const geometry::RigidTransform T_ref_predicted = T_ref_world * T_world_predicted;
+  // The stereo check, at the predicted pose, on the points the draw picks.
+  std::function<bool(const Eigen::Vector3d&)> keep;
+  std::optional<StereoCheck> check;
+  if (stereo_ && !obs.ts_right.empty()) {
+    check.emplace(obs.ts_left, obs.ts_right, valid_mask, camera_, *stereo_);
+    const geometry::RigidTransform T_cur_ref = T_ref_predicted.Inverse();
+    keep = [&check, T_cur_ref](const Eigen::Vector3d& p_ref) {
+      return !check->SeesSomethingElse(T_cur_ref * p_ref);
+    };
+  }
+  const Registration registration(points_ref, camera_, config_,
+                                  seed_ ^ static_cast<std::uint64_t>(since_origin_ns), keep);
+  result->stereo_left_out = registration.left_out();
+  const RegistrationImages images{obs.negative_ts_left, obs.grad_u, obs.grad_v, valid_mask};
   std::optional<Eigen::Matrix3d> R_prior;
   if (gyro_prior) R_prior = T_ref_predicted.R;  // the gyroscope's rotation
   result->registration = registration.Solve(images, T_ref_predicted, R_prior);

@@ -18,6 +18,7 @@
 #include "aavio/imu/imu_sample.hpp"
 #include "aavio/tracking/imu_prior.hpp"
 #include "aavio/tracking/registration.hpp"
+#include "aavio/tracking/stereo_check.hpp"
 
 namespace aavio::tracking {
 
@@ -58,6 +59,7 @@ struct TrackingResult {
   TrackingStatus status = TrackingStatus::kNoMap;
   LostReason lost_reason = LostReason::kNone;
   bool registered = false;  ///< the registration ran (a map, and events to register on)
+  int stereo_left_out = 0;  ///< map points the stereo check left out of the registration
   RegistrationResult registration;
   double prediction_ms = 0.0, registration_ms = 0.0;
 };
@@ -74,8 +76,10 @@ geometry::RigidTransform PredictPose(
 class Tracker {
  public:
   /// `T_imu_cam`: the rectified left camera → IMU (see gyro_preintegration.hpp).
+  /// `stereo`: the rig for config.stereo_check (without it the check is off).
   Tracker(const Camera& camera, const TrackingConfig& config, const imu::ImuConfig& imu_config,
-          const geometry::RigidTransform& T_imu_cam, std::uint64_t seed);
+          const geometry::RigidTransform& T_imu_cam, std::uint64_t seed,
+          const std::optional<StereoCheckRig>& stereo = std::nullopt);
 
   /// Starts (or restarts, keeping the gyroscope bias estimate) at a known pose.
   void Reset(TimeNs t_ns, const geometry::RigidTransform& T_world_cam, bool keep_velocity = false);
@@ -110,6 +114,7 @@ class Tracker {
 
   Camera camera_;
   TrackingConfig config_;
+  std::optional<StereoCheckRig> stereo_;  // set when config_.stereo_check
   ImuPrior imu_;
   TimeNs last_tracked_ns_ = 0;  ///< the last registered (or standing) tick: bridging
   std::uint64_t seed_;

@@ -38,6 +38,10 @@ struct TrackingConfig {
   /// [TS levels² per cm²]. Holds weakly observed directions (motion along the optical axis, a
   /// flat cost valley) where mini-batch noise would slide the pose; 0 = the paper.
   double translation_prior_weight = 0.0;
+  /// aavio: leave out of each tick's registration the map points where the current stereo pair
+  /// sees something at another depth (stereo_check.hpp: people or cars passing near the
+  /// camera). Builds the right time surface at every tick, not only at mapping ticks.
+  bool stereo_check = false;
 
   template <typename V>
   void VisitFields(V&& v) {
@@ -59,6 +63,8 @@ struct TrackingConfig {
       "the gyroscope's rotation also as a cost term; 0 off (aavio)");
     v("translation_prior_weight", translation_prior_weight,
       "the predicted translation as a soft prior; 0 off (aavio)");
+    v("stereo_check", stereo_check,
+      "leave out map points the stereo pair now sees something nearer at (movers; aavio)");
   }
   Status Validate() const;
 };
