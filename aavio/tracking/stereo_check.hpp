@@ -21,9 +21,9 @@ namespace aavio::tracking {
 struct StereoCheckRig {
   double fb = 0.0;                ///< focal length × baseline [px·m]
   double disparity_offset = 0.0;  ///< cx_left − cx_right: the disparity at infinity [px]
-  int min_disparity = 0;          ///< the row search's range: the mapped depth range's [px]
-  int max_disparity = 0;
-  double zncc_threshold = 0.1;  ///< θ: static stereo accepts a match whose cost is at most θ
+  int min_disparity = 0;          ///< the row search's disparities [px] (the odometry's: 0 to
+  int max_disparity = 0;          ///< twice the nearest mapped depth's)
+  double zncc_threshold = 0.1;    ///< θ: static stereo accepts a match whose cost is at most θ
 };
 
 class StereoCheck {
