@@ -35,7 +35,8 @@ StereoCheck::StereoCheck(const cv::Mat& left_ts, const cv::Mat& right_ts, const 
     : left_(left_ts), right_(right_ts), valid_mask_(valid_mask), camera_(camera), rig_(rig) {}
 
 bool StereoCheck::SeesSomethingElse(const Eigen::Vector3d& q_cam) const {
-  if (q_cam.z() <= 1e-6) return false;
+  if (q_cam.z() <= 1e-6 || right_.size() != left_.size() || valid_mask_.size() != left_.size())
+    return false;
   const int u = static_cast<int>(std::lround(camera_.f * q_cam.x() / q_cam.z() + camera_.cx));
   const int v = static_cast<int>(std::lround(camera_.f * q_cam.y() / q_cam.z() + camera_.cy));
   if (u - kHalfW < 0 || u + kHalfW >= left_.cols || v - kHalfH < 0 || v + kHalfH >= left_.rows)

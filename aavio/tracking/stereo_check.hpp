@@ -29,7 +29,8 @@ struct StereoCheckRig {
 class StereoCheck {
  public:
   /// `left_ts`, `right_ts`: the tick's rectified time surfaces (CV_8UC1); `valid_mask`: the left
-  /// camera's (> 125 usable). The images must outlive the check.
+  /// camera's (> 125 usable), all of one size (else every point stays). The images must outlive
+  /// the check.
   StereoCheck(const cv::Mat& left_ts, const cv::Mat& right_ts, const cv::Mat& valid_mask,
               const Camera& camera, const StereoCheckRig& rig);
 

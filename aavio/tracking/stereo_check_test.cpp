@@ -29,7 +29,8 @@ struct Pair {
 Pair MakePair(bool with_person) {
   Pair pair;
   cv::Mat noise(kPair.height, kPair.width + 80, CV_32FC1);
-  cv::randu(noise, 0.0, 255.0);
+  cv::RNG rng(7);  // its own generator: the same pair whichever tests run before
+  rng.fill(noise, cv::RNG::UNIFORM, 0.0, 255.0);
   cv::GaussianBlur(noise, noise, cv::Size(3, 3), 0.0);
   noise.convertTo(noise, CV_8U);
   pair.left = noise(cv::Rect(0, 0, kPair.width, kPair.height)).clone();
@@ -80,7 +81,8 @@ TEST(StereoCheck, KeepsWhatItCannotTell) {
   pair.left(cv::Rect(130, 40, 40, 40)).setTo(0);
   // A right view that matches nothing (another camera's noise): no evidence of another depth.
   cv::Mat other(kPair.height, kPair.width, CV_8UC1);
-  cv::randu(other, 0, 255);
+  cv::RNG rng(11);
+  rng.fill(other, cv::RNG::UNIFORM, 0, 255);
   const StereoCheck empty(pair.left, pair.right, pair.valid, kPair, kRig);
   EXPECT_FALSE(empty.SeesSomethingElse(WallPoint(150, 60)));
   const StereoCheck unmatched(pair.left, other, pair.valid, kPair, kRig);
@@ -92,6 +94,10 @@ TEST(StereoCheck, KeepsWhatItCannotTell) {
   pair.valid.setTo(0);
   const StereoCheck masked(pair.left, pair.right, pair.valid, kPair, kRig);
   EXPECT_FALSE(masked.SeesSomethingElse(WallPoint(145, 120)));
+  // A right image of another size than the left: nothing read from it.
+  const cv::Mat small(kPair.height / 2, kPair.width / 2, CV_8UC1, cv::Scalar(0));
+  const StereoCheck mismatched(pair.left, small, MakePair(true).valid, kPair, kRig);
+  EXPECT_FALSE(mismatched.SeesSomethingElse(WallPoint(145, 120)));
 }
 
 TEST(StereoCheck, RegistrationDrawsInPlaceOfThePointsLeftOut) {
