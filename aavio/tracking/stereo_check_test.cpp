@@ -94,9 +94,14 @@ TEST(StereoCheck, KeepsWhatItCannotTell) {
   pair.valid.setTo(0);
   const StereoCheck masked(pair.left, pair.right, pair.valid, kPair, kRig);
   EXPECT_FALSE(masked.SeesSomethingElse(WallPoint(145, 120)));
-  // A right image of another size than the left: nothing read from it.
-  const cv::Mat small(kPair.height / 2, kPair.width / 2, CV_8UC1, cv::Scalar(0));
-  const StereoCheck mismatched(pair.left, small, MakePair(true).valid, kPair, kRig);
+  // A right image of another size than the left: nothing read from it. Cut from the right view
+  // that shows the person, it would leave the point out if the check read it (all the row search
+  // needs lies in its first 200 columns).
+  const Pair fresh = MakePair(true);
+  const StereoCheck whole(fresh.left, fresh.right, fresh.valid, kPair, kRig);
+  ASSERT_TRUE(whole.SeesSomethingElse(WallPoint(145, 120)));
+  const cv::Mat narrower = fresh.right(cv::Rect(0, 0, 200, kPair.height)).clone();
+  const StereoCheck mismatched(fresh.left, narrower, fresh.valid, kPair, kRig);
   EXPECT_FALSE(mismatched.SeesSomethingElse(WallPoint(145, 120)));
 }
 
