@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 #include "aavio/mapping/static_stereo.hpp"
@@ -28,6 +29,51 @@ void CopyStrip(const cv::Mat& image, int v, int x0, int width, std::vector<float
   }
 }
 
+// Sums of a 15×7 patch of an 8-bit image (exact, in integers).
+struct PatchSums {
+  std::int64_t sum = 0, sq = 0;
+  int zeros = 0;
+};
+PatchSums SumsOf(const cv::Mat& image, int u, int v) {
+  PatchSums s;
+  for (int r = -kHalfH; r <= kHalfH; ++r) {
+    const std::uint8_t* row = image.ptr<std::uint8_t>(v + r) + (u - kHalfW);
+    int sum = 0, sq = 0, zeros = 0;
+    for (int c = 0; c < mapping::kPatchWidth; ++c) {
+      sum += row[c];
+      sq += row[c] * row[c];
+      zeros += row[c] == 0 ? 1 : 0;
+    }
+    s.sum += sum, s.sq += sq, s.zeros += zeros;
+  }
+  return s;
+}
+
+// ½(1 − ZNCC) of the left patch at (u, v) against the right patch at (x, v), from exact integer
+// sums: mapping::ZnccCostFromSums's rules (0.5 for a flat patch or means a factor of 5 apart).
+double OwnCost(const cv::Mat& left, const PatchSums& a, const cv::Mat& right, int u, int x,
+               int v) {
+  std::int64_t sum_b = 0, sq_b = 0, cross = 0;
+  for (int r = -kHalfH; r <= kHalfH; ++r) {
+    const std::uint8_t* la = left.ptr<std::uint8_t>(v + r) + (u - kHalfW);
+    const std::uint8_t* rb = right.ptr<std::uint8_t>(v + r) + (x - kHalfW);
+    int s = 0, q = 0, ab = 0;
+    for (int c = 0; c < mapping::kPatchWidth; ++c) {
+      s += rb[c];
+      q += rb[c] * rb[c];
+      ab += la[c] * rb[c];
+    }
+    sum_b += s, sq_b += q, cross += ab;
+  }
+  constexpr std::int64_t n = mapping::kPatchWidth * mapping::kPatchHeight;
+  // n²·variances and n·covariance, exactly.
+  const std::int64_t var_a = n * a.sq - a.sum * a.sum, var_b = n * sq_b - sum_b * sum_b;
+  if (var_a <= 0 || var_b <= 0) return 0.5;
+  if (a.sum > 5 * sum_b || sum_b > 5 * a.sum) return 0.5;
+  const double cov = static_cast<double>(n * cross - a.sum * sum_b);
+  return 0.5 * (1.0 - cov / std::sqrt(static_cast<double>(var_a) * static_cast<double>(var_b)));
+}
+
 }  // namespace
 
 StereoCheck::StereoCheck(const cv::Mat& left_ts, const cv::Mat& right_ts, const cv::Mat& valid_mask,
@@ -43,14 +89,8 @@ bool StereoCheck::SeesSomethingElse(const Eigen::Vector3d& q_cam) const {
     return false;
   if (valid_mask_.at<std::uint8_t>(v, u) <= 125) return false;
   // The left patch: no events there, nothing to tell.
-  thread_local std::vector<float> left, strip;
-  CopyStrip(left_, v, u - kHalfW, mapping::kPatchWidth, &left);
-  const auto empty = std::count(left.begin(), left.end(), 0.0f);
-  if (static_cast<double>(empty) > mapping::kEmptyPatchFraction * static_cast<double>(left.size()))
-    return false;
-  mapping::NormalizedPatch patch;
-  if (!mapping::PreparePatch(left.data(), mapping::kPatchWidth, mapping::kPatchHeight,
-                             mapping::kPatchWidth, &patch))
+  const PatchSums a = SumsOf(left_, u, v);
+  if (a.zeros > mapping::kEmptyPatchFraction * mapping::kPatchWidth * mapping::kPatchHeight)
     return false;
   // The disparities whose right patch lies inside the image.
   const int d_lo = std::max(rig_.min_disparity, u + kHalfW - (right_.cols - 1));
@@ -60,16 +100,20 @@ bool StereoCheck::SeesSomethingElse(const Eigen::Vector3d& q_cam) const {
   const double d = std::clamp(rig_.fb / q_cam.z() + rig_.disparity_offset, d_lo - 4.0, d_hi + 4.0);
   const int own_lo = std::max(d_lo, static_cast<int>(std::floor(d)) - 1);
   const int own_hi = std::min(d_hi, static_cast<int>(std::ceil(d)) + 1);
-  // Its own disparity first (a few comparisons): a match there, and it stays.
-  if (own_lo <= own_hi) {
-    const int width = own_hi - own_lo + mapping::kPatchWidth;
-    CopyStrip(right_, v, u - own_hi - kHalfW, width, &strip);
-    double own = 1.0;
-    for (int k = own_lo; k <= own_hi; ++k)
-      own = std::min(own, mapping::ZnccCost(patch, strip.data() + (own_hi - k), width));
-    if (own <= kOwnTolerance * rig_.zncc_threshold) return false;
-  }
-  // The row: a match static stereo would accept, away from the point's own disparity.
+  // Its own disparity first (a few comparisons, on the 8-bit images): a match there, and it
+  // stays. Most points end here.
+  double own = 1.0;
+  for (int k = own_lo; k <= own_hi; ++k)
+    own = std::min(own, OwnCost(left_, a, right_, u, u - k, v));
+  if (own_lo <= own_hi && own <= kOwnTolerance * rig_.zncc_threshold) return false;
+  // The row (the float patch static stereo compares): a match static stereo would accept, away
+  // from the point's own disparity.
+  thread_local std::vector<float> left, strip;
+  CopyStrip(left_, v, u - kHalfW, mapping::kPatchWidth, &left);
+  mapping::NormalizedPatch patch;
+  if (!mapping::PreparePatch(left.data(), mapping::kPatchWidth, mapping::kPatchHeight,
+                             mapping::kPatchWidth, &patch))
+    return false;
   const int count = d_hi - d_lo + 1;
   const int width = count + mapping::kPatchWidth - 1;
   CopyStrip(right_, v, u - d_hi - kHalfW, width, &strip);
