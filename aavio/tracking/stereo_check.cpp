@@ -66,7 +66,7 @@ double OwnCost(const cv::Mat& left, const PatchSums& a, const cv::Mat& right, in
     sum_b += s, sq_b += q, cross += ab;
   }
   constexpr std::int64_t n = mapping::kPatchWidth * mapping::kPatchHeight;
-  // n²·variances and n·covariance, exactly.
+  // n² times the variances and the covariance, exactly.
   const std::int64_t var_a = n * a.sq - a.sum * a.sum, var_b = n * sq_b - sum_b * sum_b;
   if (var_a <= 0 || var_b <= 0) return 0.5;
   if (a.sum > 5 * sum_b || sum_b > 5 * a.sum) return 0.5;
