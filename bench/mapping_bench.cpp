@@ -1,18 +1,22 @@
-// Costs of a mapping cycle with 2 threads, per sensor size: the observations are real simulator
-// output — each simulation preset's scene (rpg 240×180 with the indoor preset, dsec 640×480 with
-// the driving preset, tum_vie 1280×720 with the indoor preset; the sensor's rules on top, as
-// `aavio run` resolves them) some seconds into its motion, with the simulator's exact poses and
-// the temporal partners the preset finds (the driving preset's with their cross-check).
+// Costs of a mapping cycle with 2 threads, and of its temporal stereo on one, per sensor size:
+// the observations are real simulator output — each simulation preset's scene (rpg 240×180 with
+// the indoor preset, dsec 640×480 with the driving preset, tum_vie 1280×720 with the indoor
+// preset; the sensor's rules on top, as `aavio run` resolves them) some seconds into its motion,
+// with the simulator's exact poses and the temporal partners the preset finds (the driving
+// preset's with their cross-check).
 #include <benchmark/benchmark.h>
 #include <tbb/global_control.h>
 
 #include <map>
 #include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "aavio/config/config_sources.hpp"
 #include "aavio/events/representation_builder.hpp"
 #include "aavio/geometry/rectification.hpp"
 #include "aavio/mapping/mapper.hpp"
+#include "aavio/mapping/temporal_partners.hpp"
+#include "aavio/mapping/temporal_stereo.hpp"
 #include "aavio/pipeline/odometry_config.hpp"
 #include "aavio/sim/event_simulation.hpp"
 
@@ -121,6 +125,69 @@ BENCHMARK(BM_MappingCycle)
     ->DenseRange(0, 2)
     ->Unit(benchmark::kMillisecond)
     ->MinTime(2.0);
+
+// Temporal stereo alone, on one thread: every edge sample of a cycle searched along its
+// epipolar segment in the partner's AA map and, with the driving preset, the check partner's
+// (the cycle's own split sends only the near-horizontal ones there).
+void BM_TemporalStereo(benchmark::State& state) {
+  const Workload& w = GetWorkload(static_cast<int>(state.range(0)));
+  tbb::global_control threads(tbb::global_control::max_allowed_parallelism, 1);
+  const mapping::TemporalStereoConfig& config = w.config.mapping.temporal_stereo;
+  // The first observation with both partners, else the first with one.
+  std::size_t k = 0;
+  mapping::TemporalPartners partners;
+  for (std::size_t i = 1; i < w.observations.size(); ++i) {
+    const mapping::TemporalPartners found = mapping::FindTemporalPartners(
+        std::span(w.observations.data(), i), w.observations[i].T_world_obs, config);
+    if (found.main == nullptr || (k > 0 && found.check == nullptr)) continue;
+    if (k == 0 || partners.check == nullptr) k = i, partners = found;
+    if (found.check != nullptr) break;
+  }
+  if (k == 0) {
+    state.SkipWithError("no observation has a temporal partner");
+    return;
+  }
+  const mapping::PosedObservation& now = w.observations[k];
+  // As the mapper prepares them (smoothed AA maps as floats).
+  auto as_float = [&](const cv::Mat& aa) {
+    cv::Mat source = aa, out;
+    if (config.smooth_aa)
+      cv::GaussianBlur(aa, source, cv::Size(5, 5), 0.0, 0.0, cv::BORDER_REFLECT_101);
+    source.convertTo(out, CV_32F);
+    return out;
+  };
+  const cv::Mat aa_now = as_float(now.obs->aa_map), aa_past = as_float(partners.main->obs->aa_map);
+  const geometry::RigidTransform T_past_now =
+      partners.main->T_world_obs.Inverse() * now.T_world_obs;
+  mapping::TemporalStereoInput input{aa_now, aa_past, T_past_now};
+  cv::Mat aa_check;
+  geometry::RigidTransform T_check_now;
+  if (partners.check != nullptr) {
+    aa_check = as_float(partners.check->obs->aa_map);
+    T_check_now = partners.check->T_world_obs.Inverse() * now.T_world_obs;
+    input.aa_check = &aa_check;
+    input.T_check_now = &T_check_now;
+  }
+  std::vector<Eigen::Vector2f> points;
+  for (const events::EdgeSample& s : now.obs->samples)
+    points.emplace_back(s.u, s.v);
+  std::size_t matches = 0;
+  for (auto _ : state) {
+    const std::vector<mapping::Match> found = mapping::MatchTemporal(
+        input, points, w.stereo, config, w.config.mapping.static_stereo.zncc_threshold,
+        w.config.mapping.inv_depth_range());
+    matches = found.size();
+    benchmark::DoNotOptimize(found.data());
+  }
+  state.counters["points"] = static_cast<double>(points.size());
+  state.counters["matches"] = static_cast<double>(matches);
+  state.counters["check"] = partners.check != nullptr ? 1 : 0;
+}
+BENCHMARK(BM_TemporalStereo)
+    ->ArgName("sensor")
+    ->DenseRange(0, 2)
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(1.0);
 
 }  // namespace
 

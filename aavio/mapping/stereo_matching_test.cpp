@@ -27,6 +27,24 @@ TEST(Zncc, CostOfEqualOppositeAndFlatPatches) {
   EXPECT_DOUBLE_EQ(ZnccCost(p, flat.ptr<float>(), static_cast<int>(flat.step1())), 0.5);
 }
 
+TEST(Zncc, MeansMoreThanFiveTimesApartCostOneHalf) {
+  // A scaled copy correlates perfectly; scaled beyond a factor of 5 either way the mean rule
+  // (decided from Σb before the other sums) gives no correlation.
+  const cv::Mat a = testing::Texture(31, 5, 3);
+  NormalizedPatch p;
+  ASSERT_TRUE(PreparePatch(a.ptr<float>(), static_cast<int>(a.step1()), 5, 31, &p));
+  for (const double scale : {0.21, 4.9, 0.19, 5.1}) {
+    SCOPED_TRACE(scale);
+    const cv::Mat b = a * scale;
+    const double cost = ZnccCost(p, b.ptr<float>(), static_cast<int>(b.step1()));
+    if (scale > 0.2 && scale < 5.0) {
+      EXPECT_NEAR(cost, 0.0, 1e-6);
+    } else {
+      EXPECT_DOUBLE_EQ(cost, 0.5);
+    }
+  }
+}
+
 TEST(Zncc, RowSearchEqualsOneCostPerPosition) {
   const cv::Mat image = testing::Texture(160, 40, 5);
   const int stride = static_cast<int>(image.step1());

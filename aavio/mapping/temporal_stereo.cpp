@@ -95,7 +95,8 @@ Outcome SearchSegment(const NormalizedPatch& patch, const cv::Mat& aa_past,
   const double first = std::round(major_far);
   const int steps = static_cast<int>(std::floor(std::abs(major_far + major_len - first)));
   auto s_of = [&](double k) { return (first + sign * k - major_far) / major_len; };
-  std::vector<double> costs(static_cast<std::size_t>(steps + 1), 1.0);
+  thread_local std::vector<double> costs;  // reused: one search at a time per thread
+  costs.assign(static_cast<std::size_t>(steps + 1), 1.0);
   int best_k = -1;
   for (int k = 0; k <= steps; ++k) {
     const double s = s_of(k);
