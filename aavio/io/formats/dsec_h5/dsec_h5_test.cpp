@@ -130,6 +130,8 @@ TEST(DsecH5, BadFilesGiveClearErrors) {
       {"negative_x", "event 7000 has x = -3, y = "},
       {"polarity_7", "event 9000 has x = "},
       {"corrupt", "the file is truncated or corrupt (HDF5: Blosc decompression error"},
+      // Event 1 is the largest stamp nanoseconds hold (read), event 2 one µs more.
+      {"t_overflow_inside", "event 2 at t = 4719772409484280 µs (+ t_offset 4503599627370496)"},
   };
   for (const Case& c : read_errors) {
     auto stream = OpenOk(c.file, {.width = 640, .height = 480});
