@@ -93,16 +93,34 @@ TEST(TsImages, NegativeTsAndGradients) {
 }
 
 TEST(NegativeTs, IntegerGradientsEqualFloatSobelEverywhere) {
-  cv::Mat image(37, 53, CV_8UC1);
+  // Sizes around the vector widths, the smallest the integer pass takes, and a view into a
+  // larger image (rows addressed by its step; reflected at its own borders, so compared with
+  // its copy); the extremes 0 and 255 beside each other.
   cv::RNG rng(7);
-  rng.fill(image, cv::RNG::UNIFORM, 0, 256);
-  cv::Mat du, dv, float_du, float_dv;
-  SobelGradients(image, &du, &dv);  // the integer path for CV_8UC1
-  cv::Sobel(image, float_du, CV_32F, 1, 0, 3, 1.0 / 8.0, 0.0, cv::BORDER_REFLECT_101);
-  cv::Sobel(image, float_dv, CV_32F, 0, 1, 3, 1.0 / 8.0, 0.0, cv::BORDER_REFLECT_101);
-  ASSERT_EQ(du.type(), CV_32FC1);
-  EXPECT_EQ(cv::norm(du, float_du, cv::NORM_INF), 0.0);  // borders included
-  EXPECT_EQ(cv::norm(dv, float_dv, cv::NORM_INF), 0.0);
+  cv::Mat large(40, 80, CV_8UC1);
+  rng.fill(large, cv::RNG::UNIFORM, 0, 256);
+  std::vector<cv::Mat> images = {large(cv::Rect(3, 2, 53, 37)), cv::Mat(2, 3, CV_8UC1),
+                                 cv::Mat(5, 33, CV_8UC1),       cv::Mat(480, 640, CV_8UC1),
+                                 cv::Mat(1, 7, CV_8UC1),        cv::Mat(6, 2, CV_8UC1)};
+  for (std::size_t i = 1; i < images.size(); ++i)
+    rng.fill(images[i], cv::RNG::UNIFORM, 0, 256);
+  cv::Mat stripes(9, 35, CV_8UC1, cv::Scalar(0));
+  for (int x = 0; x < stripes.cols; x += 2)
+    stripes.col(x).setTo(255);
+  images.push_back(stripes);
+  images.push_back(stripes.t());
+  for (const cv::Mat& image : images) {
+    cv::Mat du, dv, float_du, float_dv;
+    SobelGradients(image, &du, &dv);
+    const cv::Mat own = image.clone();
+    cv::Sobel(own, float_du, CV_32F, 1, 0, 3, 1.0 / 8.0, 0.0, cv::BORDER_REFLECT_101);
+    cv::Sobel(own, float_dv, CV_32F, 0, 1, 3, 1.0 / 8.0, 0.0, cv::BORDER_REFLECT_101);
+    ASSERT_EQ(du.type(), CV_32FC1);
+    ASSERT_EQ(du.size(), image.size());
+    // Borders included.
+    EXPECT_EQ(cv::norm(du, float_du, cv::NORM_INF), 0.0) << image.cols << "x" << image.rows;
+    EXPECT_EQ(cv::norm(dv, float_dv, cv::NORM_INF), 0.0) << image.cols << "x" << image.rows;
+  }
 }
 
 }  // namespace

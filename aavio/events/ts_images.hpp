@@ -16,7 +16,8 @@ void SmoothTs(const cv::Mat& ts, int kernel, cv::Mat* out);
 /// 255 − G(TS), G a 5×5 Gaussian ([ESVO] kernelSize, [ICRA code]).
 void NegativeTs(const cv::Mat& ts, cv::Mat* out);
 
-/// 3×3 Sobel derivatives ∂u, ∂v of an image, divided by 8 (so they are per-pixel slopes), CV_32F.
+/// 3×3 Sobel derivatives ∂u, ∂v of an image, divided by 8 (so they are per-pixel slopes), CV_32F;
+/// reflected at the image's borders (a view's surroundings are not read).
 void SobelGradients(const cv::Mat& image, cv::Mat* d_u, cv::Mat* d_v);
 
 }  // namespace aavio::events
