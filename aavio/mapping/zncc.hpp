@@ -41,14 +41,19 @@ inline bool PreparePatch(const float* top_left, int stride, int rows, int cols,
   return true;
 }
 
+/// The rules of ZnccCost that need no more than the right patch's Σb: no correlation if the left
+/// patch is flat or, as the reference code does, if the means differ by more than a factor of 5.
+inline bool UncorrelatedByMean(const NormalizedPatch& a, double sum) {
+  const double mean_b = sum / (a.rows * a.cols);
+  return a.norm <= 1e-9 || a.mean > 5.0 * mean_b || mean_b > 5.0 * a.mean;
+}
+
 /// ½(1 − ZNCC) from the sums of a right patch (Σb, Σb², Σ(a − ā)b over n pixels); the rules of
 /// ZnccCost for flat patches and mean ratios.
 inline double ZnccCostFromSums(const NormalizedPatch& a, double sum, double sq, double cross) {
-  const double n = a.rows * a.cols;
-  const double mean_b = sum / n;
-  const double var_b = sq - sum * mean_b;
-  if (a.norm <= 1e-9 || var_b <= 1e-9) return 0.5;
-  if (a.mean > 5.0 * mean_b || mean_b > 5.0 * a.mean) return 0.5;
+  if (UncorrelatedByMean(a, sum)) return 0.5;
+  const double var_b = sq - sum * (sum / (a.rows * a.cols));
+  if (var_b <= 1e-9) return 0.5;  // a flat right patch
   return 0.5 * (1.0 - cross / (a.norm * std::sqrt(var_b)));
 }
 
@@ -77,9 +82,7 @@ inline double ZnccCost(const NormalizedPatch& a, const float* top_left, int stri
            static_cast<double>(v4[3]) + static_cast<double>(v1);
   };
   const double sum = total(s4, s1);
-  // ZnccCostFromSums' flat-left and mean-ratio rules, which need no more than Σb.
-  const double mean_b = sum / (a.rows * a.cols);
-  if (a.norm <= 1e-9 || a.mean > 5.0 * mean_b || mean_b > 5.0 * a.mean) return 0.5;
+  if (UncorrelatedByMean(a, sum)) return 0.5;
   for (int r = 0; r < a.rows; ++r) {
     const float* row = top_left + r * stride;
     const float* pa = a.values + r * a.cols;
