@@ -1,10 +1,11 @@
 // Costs of the representation stage on one core, per sensor size and event rate: the time
-// surface (insertion, render, rectification, median), its negative and gradients, the AA map, the
-// edge samples, and the whole observation of both cameras. The events are real simulator output:
-// a stretch of each preset's scene (rpg 240×180, dsec 640×480, tum_vie 1280×720), with time
-// compressed or stretched so that a 10 ms tick holds the events per camera the benchmark's second
-// argument gives, in thousands (14k: the rpg twins' 1.4 Mev/s; 40k: DSEC's 4 Mev/s; 100k: a
-// TUM-VIE desk at 10 Mev/s; 200k: 20 Mev/s, a fast hand-held VGA camera or a busy street).
+// surface (insertion, render, rectification, median), the rectification alone, its negative and
+// gradients, the AA map, the edge samples, and the whole observation of both cameras. The events
+// are real simulator output: a stretch of each preset's scene (rpg 240×180, dsec 640×480,
+// tum_vie 1280×720), with time compressed or stretched so that a 10 ms tick holds the events per
+// camera the benchmark's second argument gives, in thousands (14k: the rpg twins' 1.4 Mev/s;
+// 40k: DSEC's 4 Mev/s; 100k: a TUM-VIE desk at 10 Mev/s; 200k: 20 Mev/s, a fast hand-held VGA
+// camera or a busy street).
 #include <benchmark/benchmark.h>
 
 #include <map>
@@ -132,6 +133,22 @@ void BM_TimeSurface(benchmark::State& state) {
   state.counters["ticks_of_data"] = static_cast<double>(w.end_ns / kTick);
 }
 BENCHMARK(BM_TimeSurface)->Apply(Rates)->Unit(benchmark::kMillisecond);
+
+// One rectification of a rendered time surface (the left camera's maps).
+void BM_Rectify(benchmark::State& state) {
+  const Workload& w = GetWorkload(state);
+  const events::ImageRectifier rectifier(w.rectification.left);
+  events::TimeSurface ts(w.width, w.height, 0);
+  (void)ts.Insert(std::span(w.left).subspan(0, After(w.left, 5 * kTick)));
+  cv::Mat padded = rectifier.MakePadded(), rectified;
+  cv::Mat raw = events::ImageRectifier::PaddedInterior(padded);
+  ts.Render(5 * kTick, 30.0, &raw);
+  for (auto _ : state) {
+    rectifier.RectifyPadded(padded, &rectified);
+    benchmark::DoNotOptimize(rectified.data);
+  }
+}
+BENCHMARK(BM_Rectify)->Apply(Rates)->Unit(benchmark::kMillisecond);
 
 void BM_NegativeTsAndGradients(benchmark::State& state) {
   const Workload& w = GetWorkload(state);
