@@ -2,6 +2,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numeric>
 #include <optional>
@@ -34,6 +35,40 @@ double Bilinear(const cv::Mat& image, const BilinearWeights& w) {
   const T* b = image.ptr<T>(w.y0 + 1) + w.x0;
   return w.w00 * static_cast<double>(a[0]) + w.w10 * static_cast<double>(a[1]) +
          w.w01 * static_cast<double>(b[0]) + w.w11 * static_cast<double>(b[1]);
+}
+
+// A map point in the current camera and where it lands; `inside`: in front, and its bilinear
+// neighbourhood inside the image (the mask is tested when it is sampled).
+struct Projected {
+  Eigen::Vector3d q;
+  double u = 0.0, v = 0.0;
+  bool inside = false;
+};
+
+Projected Project(const Eigen::Vector3d& p_ref, const Eigen::Matrix3d& R_cur_ref,
+                  const Eigen::Vector3d& t_ref_cur, const Camera& camera) {
+  Projected at;
+  at.q = R_cur_ref * (p_ref - t_ref_cur);
+  if (!(at.q.z() > 1e-6)) return at;
+  at.u = camera.f * at.q.x() / at.q.z() + camera.cx;
+  at.v = camera.f * at.q.y() / at.q.z() + camera.cy;
+  at.inside = at.u >= 0.0 && at.v >= 0.0 && at.u < camera.width - 1.0 && at.v < camera.height - 1.0;
+  return at;
+}
+
+// Asks for the two image rows a projected point's samples will read (the points come in random
+// order, so each one's pixels would otherwise be a cache miss when they are read).
+void Prefetch(const RegistrationImages& images, const Projected& at, bool gradients) {
+  if (!at.inside) return;
+  const int x = static_cast<int>(at.u), y = static_cast<int>(at.v);
+  for (const int row : {y, y + 1}) {
+    __builtin_prefetch(images.valid_mask.ptr<std::uint8_t>(row) + x);
+    __builtin_prefetch(images.negative_ts.ptr<std::uint8_t>(row) + x);
+    if (gradients) {
+      __builtin_prefetch(images.grad_u.ptr<float>(row) + x);
+      __builtin_prefetch(images.grad_v.ptr<float>(row) + x);
+    }
+  }
 }
 
 // The soft priors of the cost: the gyroscope's rotation, w‖K δ‖² with δ = log(R R_priorᵀ) and
@@ -156,24 +191,30 @@ void Registration::Linearize(const RegistrationImages& images,
   residuals->resize(static_cast<Eigen::Index>(indices.size()));
   if (jacobian) jacobian->resize(static_cast<Eigen::Index>(indices.size()), 6);
   *valid = 0;
-  for (std::size_t k = 0; k < indices.size(); ++k) {
-    const Eigen::Index row = static_cast<Eigen::Index>(k);
-    const Eigen::Vector3d& p = points_[static_cast<std::size_t>(indices[k])];
-    const Eigen::Vector3d q = Rt * (p - T_ref_cur.t);
-    double r = 255.0;
-    Eigen::Matrix<double, 1, 6> J = Eigen::Matrix<double, 1, 6>::Zero();
-    if (q.z() > 1e-6) {
-      const double u = f * q.x() / q.z() + camera_.cx, v = f * q.y() / q.z() + camera_.cy;
-      const bool inside =
-          u >= 0.0 && v >= 0.0 && u < camera_.width - 1.0 && v < camera_.height - 1.0;
-      if (inside && images.valid_mask.at<std::uint8_t>(static_cast<int>(v + 0.5),
-                                                       static_cast<int>(u + 0.5)) > 125) {
-        const BilinearWeights at = WeightsAt(u, v);
-        r = Bilinear<std::uint8_t>(images.negative_ts, at);
+  // In chunks: every point of a chunk projected (its rows prefetched), then sampled in order.
+  constexpr std::size_t kChunk = 32;
+  std::array<Projected, kChunk> chunk;
+  for (std::size_t begin = 0; begin < indices.size(); begin += kChunk) {
+    const std::size_t end = std::min(indices.size(), begin + kChunk);
+    for (std::size_t k = begin; k < end; ++k) {
+      chunk[k - begin] =
+          Project(points_[static_cast<std::size_t>(indices[k])], Rt, T_ref_cur.t, camera_);
+      Prefetch(images, chunk[k - begin], jacobian != nullptr);
+    }
+    for (std::size_t k = begin; k < end; ++k) {
+      const Projected& at = chunk[k - begin];
+      const Eigen::Vector3d& p = points_[static_cast<std::size_t>(indices[k])];
+      const Eigen::Vector3d& q = at.q;
+      double r = 255.0;
+      Eigen::Matrix<double, 1, 6> J = Eigen::Matrix<double, 1, 6>::Zero();
+      if (at.inside && images.valid_mask.at<std::uint8_t>(static_cast<int>(at.v + 0.5),
+                                                          static_cast<int>(at.u + 0.5)) > 125) {
+        const BilinearWeights w = WeightsAt(at.u, at.v);
+        r = Bilinear<std::uint8_t>(images.negative_ts, w);
         if (inside_robust_sum) *inside_robust_sum += r <= delta ? r * r : delta * r;
         if (jacobian) {
-          const double gu = Bilinear<float>(images.grad_u, at),
-                       gv = Bilinear<float>(images.grad_v, at);
+          const double gu = Bilinear<float>(images.grad_u, w),
+                       gv = Bilinear<float>(images.grad_v, w);
           // ∂r/∂q = ∇I · ∂π/∂q; with a = R (∂r/∂q)ᵀ: ∂r/∂c = 2 (∂r/∂q) Rᵀ [p]× = 2 (a × p)ᵀ and
           // ∂r/∂t = −aᵀ.
           const double inv_z = 1.0 / q.z();
@@ -185,11 +226,11 @@ void Registration::Linearize(const RegistrationImages& images,
         }
         ++*valid;
       }
+      // Huber: w = 1 below δ, δ/r above; the solver sees √w r (and √w J).
+      const double w = r <= delta ? 1.0 : delta / r;
+      (*residuals)(static_cast<Eigen::Index>(k)) = std::sqrt(w) * r;
+      if (jacobian) jacobian->row(static_cast<Eigen::Index>(k)) = std::sqrt(w) * J;
     }
-    // Huber: w = 1 below δ, δ/r above; the solver sees √w r (and √w J).
-    const double w = r <= delta ? 1.0 : delta / r;
-    (*residuals)(row) = std::sqrt(w) * r;
-    if (jacobian) jacobian->row(row) = std::sqrt(w) * J;
   }
 }
 
