@@ -33,7 +33,19 @@ TimeSurface::TimeSurface(int width, int height, TimeNs epoch_ns)
       t_last_s_(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), kNever) {}
 
 Status TimeSurface::Insert(std::span<const Event> events) {
-  for (const Event& e : events) {
+  // Events fall anywhere on the sensor: each one's pixel is asked for a few events ahead.
+  constexpr std::size_t kAhead = 16;
+  for (std::size_t i = 0; i < events.size(); ++i) {
+    if (i + kAhead < events.size()) {
+      const Event& next = events[i + kAhead];
+      if (next.x < width_ && next.y < height_) {
+        __builtin_prefetch(t_last_s_.data() +
+                               static_cast<std::size_t>(next.y) * static_cast<std::size_t>(width_) +
+                               next.x,
+                           1);
+      }
+    }
+    const Event& e = events[i];
     if (e.x >= width_ || e.y >= height_) {
       return InvalidArgument(
           StrFormat("event at (%d, %d) lies outside the %d×%d sensor", e.x, e.y, width_, height_));
