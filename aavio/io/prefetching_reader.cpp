@@ -4,10 +4,26 @@
 
 namespace aavio::io {
 
-PrefetchingReader::PrefetchingReader(SequenceReader* reader, std::size_t max_packets)
+namespace {
+std::size_t EventsOf(const SensorPacket& packet) {
+  return packet.left.size() + packet.right.size();
+}
+}  // namespace
+
+PrefetchingReader::PrefetchingReader(SequenceReader* reader, std::size_t max_packets,
+                                     std::size_t max_events)
     : reader_(reader),
       max_packets_(max_packets > 0 ? max_packets : 1),
+      max_events_(max_events),
       thread_([this] { Run(); }) {}
+
+bool PrefetchingReader::Full() const {
+  return ready_.size() >= max_packets_ || (!ready_.empty() && ready_events_ >= max_events_);
+}
+
+bool PrefetchingReader::Drained() const {
+  return ready_.size() <= max_packets_ / 2 && ready_events_ <= max_events_ / 2;
+}
 
 PrefetchingReader::~PrefetchingReader() {
   {
@@ -22,7 +38,11 @@ void PrefetchingReader::Run() {
   while (true) {
     {
       std::unique_lock<std::mutex> lock(mutex_);
-      changed_.wait(lock, [this] { return stop_ || ready_.size() < max_packets_; });
+      if (Full()) {
+        reader_waits_ = true;
+        changed_.wait(lock, [this] { return stop_ || Drained(); });
+        reader_waits_ = false;
+      }
       if (stop_) return;
     }
     SensorPacket packet;
@@ -35,6 +55,7 @@ void PrefetchingReader::Run() {
       } else if (!*more) {
         finished_ = true;
       } else {
+        ready_events_ += EventsOf(packet);
         ready_.push_back(std::move(packet));
       }
     }
@@ -53,8 +74,10 @@ Expected<bool> PrefetchingReader::Next(SensorPacket* packet) {
   }
   *packet = std::move(ready_.front());
   ready_.pop_front();
+  ready_events_ -= EventsOf(*packet);
+  const bool wake_reader = reader_waits_ && Drained();
   lock.unlock();
-  changed_.notify_all();
+  if (wake_reader) changed_.notify_all();
   return true;
 }
 

@@ -35,11 +35,19 @@ bool SameEvents(const std::vector<events::Event>& a, const std::vector<events::E
   return true;
 }
 
-TEST(PrefetchingReader, DeliversExactlyThePacketsOfTheReader) {
+// The packets, whatever bounds the read-ahead: a few packets, or one event (each packet read
+// fills it, so the reader waits for every one to be taken).
+class PrefetchingReaderBounds
+    : public ::testing::TestWithParam<std::pair<std::size_t, std::size_t>> {};
+INSTANTIATE_TEST_SUITE_P(Bounds, PrefetchingReaderBounds,
+                         ::testing::Values(std::pair<std::size_t, std::size_t>{3, 4'000'000},
+                                           std::pair<std::size_t, std::size_t>{100, 1}));
+
+TEST_P(PrefetchingReaderBounds, DeliversExactlyThePacketsOfTheReader) {
   const SequenceDescription d = DsecPair("dsec_blosc.h5", "uncompressed.h5");
   auto direct = Open(d), behind = Open(d);
   ASSERT_TRUE(direct && behind);
-  PrefetchingReader prefetching(behind.get(), 3);
+  PrefetchingReader prefetching(behind.get(), GetParam().first, GetParam().second);
   std::size_t packets = 0, events = 0;
   while (true) {
     SensorPacket a, b;

@@ -45,8 +45,9 @@ struct SequenceRunHooks {
   /// Each packet after it was processed; an error stops the run as the consumer's would (a
   /// recorder that cannot write).
   std::function<Status(const io::SensorPacket&)> after_packet;
-  /// Packets decoded ahead of processing (0: read on the caller's thread). What is read and in
-  /// which order does not depend on it.
+  /// Packets decoded ahead of processing (0: read on the caller's thread), within the
+  /// prefetching reader's bound of events (io::PrefetchingReader: 4 M, 64 MB). What is read and
+  /// in which order does not depend on it.
   int prefetch_packets = 50;
 };
 
