@@ -25,6 +25,11 @@ bool PrefetchingReader::Drained() const {
   return ready_.size() <= max_packets_ / 2 && ready_events_ <= max_events_ / 2;
 }
 
+PrefetchingReader::Buffered PrefetchingReader::buffered() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return {ready_.size(), ready_events_};
+}
+
 PrefetchingReader::~PrefetchingReader() {
   {
     std::lock_guard<std::mutex> lock(mutex_);

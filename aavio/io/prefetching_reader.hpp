@@ -35,6 +35,12 @@ class PrefetchingReader {
   /// reader's error (after which every call returns that error).
   Expected<bool> Next(SensorPacket* packet);
 
+  /// What is read ahead now: packets, and events of both cameras in them.
+  struct Buffered {
+    std::size_t packets = 0, events = 0;
+  };
+  Buffered buffered() const;
+
  private:
   void Run();
   bool Full() const;     // no more may be read ahead
@@ -43,7 +49,7 @@ class PrefetchingReader {
   SequenceReader* reader_;
   std::size_t max_packets_;
   std::size_t max_events_;
-  std::mutex mutex_;
+  mutable std::mutex mutex_;
   std::condition_variable changed_;
   std::deque<SensorPacket> ready_;
   std::size_t ready_events_ = 0;  // of both cameras in ready_

@@ -2,6 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <chrono>
+#include <thread>
+
 #include "tests/event_fixtures.hpp"
 
 namespace aavio::io {
@@ -87,6 +91,54 @@ TEST(PrefetchingReader, PassesOnTheReadersErrorAfterTheGoodPackets) {
   EXPECT_NE(error.message().find("truncated or corrupt"), std::string::npos) << error.message();
   SensorPacket packet;
   EXPECT_FALSE(prefetching.Next(&packet).ok());  // and stays
+}
+
+// The read-ahead stops at its bound of events (the last packet read may pass it), however many
+// packets it may hold, and once full waits for half of it to be taken before reading on.
+TEST(PrefetchingReader, ReadsAheadNoFurtherThanItsBoundOfEvents) {
+  const SequenceDescription d = DsecPair("dsec_blosc.h5", "uncompressed.h5");
+  std::size_t largest = 0, total = 0;  // events in a packet, in the sequence
+  {
+    auto direct = Open(d);
+    ASSERT_TRUE(direct);
+    SensorPacket p;
+    while (*direct->Next(&p)) {
+      largest = std::max(largest, p.left.size() + p.right.size());
+      total += p.left.size() + p.right.size();
+    }
+  }
+  const std::size_t bound = total / 4;
+  ASSERT_GT(bound, 2 * largest);  // room for several packets under the bound
+  auto reader = Open(d);
+  ASSERT_TRUE(reader);
+  PrefetchingReader prefetching(reader.get(), 100'000, bound);
+  auto settled = [&] {  // the reading thread filled up (or the test gives up after 10 s)
+    PrefetchingReader::Buffered b, last;
+    for (int i = 0; i < 1000; ++i) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+      b = prefetching.buffered();
+      if (b.events >= bound && b.packets == last.packets) break;
+      last = b;
+    }
+    return b;
+  };
+  const PrefetchingReader::Buffered full = settled();
+  EXPECT_GE(full.events, bound);
+  EXPECT_LT(full.events, bound + largest);
+  // Taking a quarter of it leaves the reader waiting; taking past half lets it fill up again.
+  SensorPacket packet;
+  std::size_t taken = 0;
+  while (taken < full.events / 4) {
+    ASSERT_TRUE(*prefetching.Next(&packet));
+    taken += packet.left.size() + packet.right.size();
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  EXPECT_EQ(prefetching.buffered().events, full.events - taken);
+  while (prefetching.buffered().events > bound / 2)
+    ASSERT_TRUE(*prefetching.Next(&packet));
+  const PrefetchingReader::Buffered again = settled();
+  EXPECT_GE(again.events, bound);
+  EXPECT_LT(again.events, bound + largest);
 }
 
 TEST(PrefetchingReader, StopsWhenDestroyedEarly) {
