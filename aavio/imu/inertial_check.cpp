@@ -30,6 +30,7 @@ void InertialCheck::Prune(TimeNs t_ns) {
 void InertialCheck::Restart() {
   anchors_.clear();
   agreed_.clear();
+  previous_error_.reset();
 }
 
 std::optional<Eigen::Vector3d> InertialCheck::GravityReference() const {
@@ -58,6 +59,7 @@ std::optional<GravityMeasurement> InertialCheck::AddTrackedPose(
     // A gap in the IMU (or none yet): no verdict across it.
     anchors_.erase(anchors_.begin(), anchors_.end() - 1);
     agreed_.clear();
+    previous_error_.reset();
     return std::nullopt;
   }
   const double d0 = span01->dt_s, d1 = span12->dt_s;
@@ -78,8 +80,20 @@ std::optional<GravityMeasurement> InertialCheck::AddTrackedPose(
   m.tolerance_m_s2 = kMaxDisagreementMS2 + 4.0 * kTrackingError * speed / span;
   // Against gravity's direction once it is known, else its magnitude.
   const std::optional<Eigen::Vector3d> reference = GravityReference();
-  m.agrees = reference ? (m.gravity_world - *reference).norm() <= m.tolerance_m_s2
-                       : std::abs(m.gravity_world.norm() - kGravityMS2) <= m.tolerance_m_s2;
+  if (!reference) {
+    m.agrees = std::abs(m.gravity_world.norm() - kGravityMS2) <= m.tolerance_m_s2;
+    previous_error_.reset();
+  } else {
+    // The error summed with the previous measurement's (the change of velocity over two spans):
+    // a pose off at one anchor only (+1, -2, +1 over three measurements) leaves at most half of
+    // what the middle measurement sees alone; a change of velocity or a jump shows in full.
+    const Eigen::Vector3d error = m.gravity_world - *reference;
+    const bool alone = error.norm() <= m.tolerance_m_s2;
+    m.agrees = previous_error_ ? (error + *previous_error_).norm() <= m.tolerance_m_s2 : alone;
+    previous_error_ = error;
+    // Only a measurement that agrees on its own makes gravity's direction.
+    if (!alone) return m;
+  }
   if (m.agrees) {
     agreed_.push_back(m.gravity_world);
     if (agreed_.size() > kGravityMeasurements) agreed_.pop_front();

@@ -102,6 +102,22 @@ TEST(InertialCheck, AConstantVelocityErrorIsNotSeenButALargeJumpIs) {
   }
 }
 
+TEST(InertialCheck, APoseOffAtOneAnchorOnlyIsNotALoss) {
+  // The track off by 15 cm across gravity for 0.12 s around one anchor, then back (a tick the
+  // registration got wrong and the next got right): alone, the measurement with that anchor in
+  // the middle sees 2 x 2.4 m/s^2, beyond the tolerance; the velocity over two spans does not
+  // change.
+  const Motion motion;
+  const std::vector<ImuSample> imu = Imu(motion, 6.0, 7);
+  const Eigen::Vector3d off = 0.15 * test_motion::kGravity.normalized().unitOrthogonal();
+  InertialCheck check(kImuCam);
+  const Verdicts v = Check(motion, &check, imu, 0.0, 5.0, 2.45, [&](double s) {
+    return s > 0.12 ? Eigen::Vector3d::Zero() : Eigen::Vector3d(off);
+  });
+  EXPECT_EQ(v.disagreeing, 0);
+  EXPECT_GE(v.agreeing, 15);
+}
+
 TEST(InertialCheck, NoVerdictAcrossAGapOfTheImuOrARestart) {
   const Motion motion;
   std::vector<ImuSample> imu = Imu(motion, 4.0, 4);
