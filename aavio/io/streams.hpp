@@ -28,7 +28,7 @@ struct StreamOptions {
   int width = 0;
   int height = 0;
   /// Events read from the file per block (bounds memory: ~16 bytes per event).
-  std::size_t block_events = 1 << 18;
+  std::size_t block_events = 1 << 16;
 };
 
 /// What a source knows without reading it all.

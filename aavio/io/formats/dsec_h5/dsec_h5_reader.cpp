@@ -7,6 +7,7 @@
 #include <type_traits>
 
 #include "aavio/common/format.hpp"
+#include "aavio/common/vector_clones.hpp"
 #include "aavio/io/decoded_stream_impl.hpp"
 #include "aavio/io/file_checks.hpp"
 #include "aavio/io/formats/dsec_h5/hdf5_util.hpp"
@@ -37,9 +38,18 @@ struct DsecH5Decoder {
   std::vector<unsigned char> raw;
   std::vector<std::int64_t> xs, ys, ps, ts;
   std::vector<events::Event> block;  // the block's events before the reorder buffer
+  // DSEC's own layout (x, y uint16, p uint8, t uint32): read as it is and converted in one pass.
+  bool dsec_layout = false;
+  std::vector<std::uint16_t> raw_x, raw_y;
+  std::vector<std::uint8_t> raw_p;
+  std::vector<std::uint32_t> raw_t;
 
   Status ReadRange(std::uint64_t begin, std::uint64_t n);
   Status ReadBlock();
+  /// The block's events into `block` from the DSEC layout; false if one is out of range.
+  Expected<bool> ReadDsecLayout(std::uint64_t n, std::int64_t max_x, std::int64_t max_y);
+  /// The same from any integer layout, through the int64 columns.
+  Expected<bool> ReadAnyLayout(std::uint64_t n, std::int64_t max_x, std::int64_t max_y);
   /// The error of the first bad event among the block's `n` (ReadBlock found one).
   Status DescribeBadEvent(std::uint64_t n) const;
   Expected<std::int64_t> ReadT(std::uint64_t index);
@@ -101,6 +111,46 @@ void Widen(hid_t type, const unsigned char* raw, std::size_t n, std::int64_t* ou
   }
 }
 
+struct ColumnRange {
+  std::int64_t min = 0, max = 0;
+};
+
+// The smallest and largest of n ≥ 1 values, in a loop the compiler vectorises.
+AAVIO_AVX2_CLONES ColumnRange RangeOf(const std::int64_t* values, std::size_t n) {
+  std::int64_t lo = values[0], hi = values[0];
+  for (std::size_t i = 1; i < n; ++i) {
+    lo = std::min(lo, values[i]);
+    hi = std::max(hi, values[i]);
+  }
+  return {lo, hi};
+}
+
+struct DsecRanges {
+  std::uint16_t x_max = 0, y_max = 0;
+  std::uint8_t p_max = 0;
+  std::uint32_t t_min = 0, t_max = 0;
+};
+
+// Events from DSEC's columns (n ≥ 1), with the extremes that decide whether all are valid.
+AAVIO_AVX2_CLONES DsecRanges ConvertDsec(const std::uint16_t* x, const std::uint16_t* y,
+                                         const std::uint8_t* p, const std::uint32_t* t,
+                                         std::size_t n, std::int64_t t_offset_us,
+                                         events::Event* out) {
+  DsecRanges r{x[0], y[0], p[0], t[0], t[0]};
+  for (std::size_t i = 0; i < n; ++i) {
+    r.x_max = std::max(r.x_max, x[i]);
+    r.y_max = std::max(r.y_max, y[i]);
+    r.p_max = std::max(r.p_max, p[i]);
+    r.t_min = std::min(r.t_min, t[i]);
+    r.t_max = std::max(r.t_max, t[i]);
+    // Wraps only where the range check below fails (then the block is refused).
+    const std::uint64_t t_ns =
+        (t[i] + static_cast<std::uint64_t>(t_offset_us)) * static_cast<std::uint64_t>(kNsPerUs);
+    out[i] = {static_cast<TimeNs>(t_ns), x[i], y[i], static_cast<std::uint8_t>(p[i] > 0 ? 1 : 0)};
+  }
+  return r;
+}
+
 }  // namespace
 
 Status DsecH5Decoder::ReadRange(std::uint64_t begin, std::uint64_t n) {
@@ -152,24 +202,59 @@ Status DsecH5Decoder::DescribeBadEvent(std::uint64_t n) const {
   return InvalidArgument(path + ": a corrupt block of events");  // not reached
 }
 
-Status DsecH5Decoder::ReadBlock() {
-  const std::uint64_t n = std::min<std::uint64_t>(options.block_events, count - next_index);
+Expected<bool> DsecH5Decoder::ReadDsecLayout(std::uint64_t n, std::int64_t max_x,
+                                             std::int64_t max_y) {
+  h5::SilenceErrorPrinting();
+  raw_x.resize(n), raw_y.resize(n), raw_p.resize(n), raw_t.resize(n);
+  void* buffers[4] = {raw_x.data(), raw_y.data(), raw_p.data(), raw_t.data()};
+  for (std::size_t c = 0; c < 4; ++c) {
+    AAVIO_RETURN_IF_ERROR(ReadSlab(datasets[c].get(), file_types[c].get(), next_index, n,
+                                   buffers[c], path, kFields[c]));
+  }
+  block.resize(n);
+  const DsecRanges r = ConvertDsec(raw_x.data(), raw_y.data(), raw_p.data(), raw_t.data(), n,
+                                   t_offset_us, block.data());
+  TimeNs t_min_ns = 0, t_max_ns = 0;
+  return r.x_max <= max_x && r.y_max <= max_y && r.p_max <= 1 &&
+         MicrosecondsToNs(r.t_min, t_offset_us, &t_min_ns) &&
+         MicrosecondsToNs(r.t_max, t_offset_us, &t_max_ns);
+}
+
+Expected<bool> DsecH5Decoder::ReadAnyLayout(std::uint64_t n, std::int64_t max_x,
+                                            std::int64_t max_y) {
   AAVIO_RETURN_IF_ERROR(ReadRange(next_index, n));
-  // One pass converts and checks; a block with a bad event is scanned again for the message.
-  // The largest valid column and row: the sensor's (a known size), else uint16's.
-  const std::int64_t max_x = options.width > 0 ? std::min(options.width, 65536) - 1 : 65535;
-  const std::int64_t max_y = options.width > 0 ? std::min(options.height, 65536) - 1 : 65535;
-  bool valid = true;
+  const ColumnRange x = RangeOf(xs.data(), n), y = RangeOf(ys.data(), n), p = RangeOf(ps.data(), n),
+                    t = RangeOf(ts.data(), n);
+  TimeNs t_min_ns = 0, t_max_ns = 0;
+  if (!(x.min >= 0 && x.max <= max_x && y.min >= 0 && y.max <= max_y && p.min >= -1 && p.max <= 1 &&
+        MicrosecondsToNs(t.min, t_offset_us, &t_min_ns) &&
+        MicrosecondsToNs(t.max, t_offset_us, &t_max_ns))) {
+    return false;
+  }
   block.resize(n);
   for (std::uint64_t i = 0; i < n; ++i) {
-    TimeNs t_ns = 0;
-    const bool t_valid = MicrosecondsToNs(ts[i], t_offset_us, &t_ns);
-    valid &= t_valid & (xs[i] >= 0) & (xs[i] <= max_x) & (ys[i] >= 0) & (ys[i] <= max_y) &
-             (ps[i] >= -1) & (ps[i] <= 1);
-    block[i] = {t_ns, static_cast<std::uint16_t>(xs[i]), static_cast<std::uint16_t>(ys[i]),
-                static_cast<std::uint8_t>(ps[i] > 0 ? 1 : 0)};
+    block[i] = {(ts[i] + t_offset_us) * kNsPerUs, static_cast<std::uint16_t>(xs[i]),
+                static_cast<std::uint16_t>(ys[i]), static_cast<std::uint8_t>(ps[i] > 0 ? 1 : 0)};
   }
-  if (!valid) return DescribeBadEvent(n);
+  return true;
+}
+
+Status DsecH5Decoder::ReadBlock() {
+  const std::uint64_t n = std::min<std::uint64_t>(options.block_events, count - next_index);
+  if (n == 0) return Status::Ok();
+  // The block is checked by each column's extremes; the largest valid column and row: the
+  // sensor's (a known size), else uint16's. Microseconds → nanoseconds is monotone, so if the
+  // extremes of t convert without overflow, every t does. A block with a bad event is read
+  // again as int64 and scanned for the message.
+  const std::int64_t max_x = options.width > 0 ? std::min(options.width, 65536) - 1 : 65535;
+  const std::int64_t max_y = options.width > 0 ? std::min(options.height, 65536) - 1 : 65535;
+  Expected<bool> valid =
+      dsec_layout ? ReadDsecLayout(n, max_x, max_y) : ReadAnyLayout(n, max_x, max_y);
+  if (!valid) return valid.status();
+  if (!*valid) {
+    if (dsec_layout) AAVIO_RETURN_IF_ERROR(ReadRange(next_index, n));
+    return DescribeBadEvent(n);
+  }
   // In-order runs in one copy; an element out of order goes through Push (reordered or an error).
   const std::span<const events::Event> all(block);
   for (std::size_t i = 0; i < n;) {
@@ -275,6 +360,11 @@ Expected<std::unique_ptr<DsecH5EventStream>> DsecH5EventStream::OpenHere(
     }
   }
   s->count = static_cast<std::uint64_t>(n);
+  auto is_unsigned = [&](int i, std::size_t bytes) {
+    return H5Tget_size(s->file_types[i].get()) == bytes &&
+           H5Tget_sign(s->file_types[i].get()) == H5T_SGN_NONE;
+  };
+  s->dsec_layout = is_unsigned(0, 2) && is_unsigned(1, 2) && is_unsigned(2, 1) && is_unsigned(3, 4);
 
   if (h5::LinkExists(s->file.get(), "/t_offset")) {
     h5::Handle d(H5Dopen2(s->file.get(), "/t_offset", H5P_DEFAULT), H5Dclose);
