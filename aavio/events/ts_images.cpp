@@ -38,9 +38,14 @@ void SmoothTs(const cv::Mat& ts, int kernel, cv::Mat* out) {
 }
 
 void NegativeTs(const cv::Mat& ts, cv::Mat* out) {
-  cv::Mat base;
-  cv::GaussianBlur(ts, base, cv::Size(5, 5), 0.0, 0.0, cv::BORDER_REFLECT_101);
-  cv::subtract(cv::Scalar(255), base, *out);
+  // Blurred into `out` (no image allocated per tick), then 255 − value in place: for 8 bits
+  // that is the bitwise complement.
+  cv::GaussianBlur(ts, *out, cv::Size(5, 5), 0.0, 0.0, cv::BORDER_REFLECT_101);
+  if (out->depth() == CV_8U) {
+    cv::bitwise_not(*out, *out);
+  } else {
+    cv::subtract(cv::Scalar::all(255), *out, *out);
+  }
 }
 
 void SobelGradients(const cv::Mat& image, cv::Mat* d_u, cv::Mat* d_v) {
