@@ -257,6 +257,7 @@ TEST_P(ReferenceOverlay, TurnsOffEveryAavioAddition) {
       // The additions on by default, with the reference codes' value.
       const std::map<std::string, std::string> on_by_default = {
           {"mapping.snap_to_edge_px", "0.0"},
+          {"mapping.predicted_search", "false"},
           {"mapping.bootstrap.min_coverage", "0.0"},
           {"mapping.fusion.full_at_max_frames", "false"},
           {"time_surface.adaptive_decay", "false"}};

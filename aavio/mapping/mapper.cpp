@@ -4,9 +4,11 @@
 #include <chrono>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
+#include <optional>
 
 #include "aavio/common/format.hpp"
 #include "aavio/mapping/depth_refinement.hpp"
+#include "aavio/mapping/disparity_prediction.hpp"
 #include "aavio/mapping/edge_snapping.hpp"
 #include "aavio/mapping/out_of_view_check.hpp"
 #include "aavio/mapping/sgm_bootstrap.hpp"
@@ -233,7 +235,8 @@ std::vector<Match> MatchTemporalGroup(const PosedObservation& now, const PosedOb
                                       const PosedObservation* check,
                                       const std::vector<Eigen::Vector2f>& group,
                                       const RectifiedStereo& stereo, const MappingConfig& config,
-                                      TemporalViews* views, TemporalMatchStats* stats) {
+                                      const DisparityPrediction* prediction, TemporalViews* views,
+                                      TemporalMatchStats* stats) {
   const bool smooth_aa = config.temporal_stereo.smooth_aa;
   views->aa_now = ToFloat(now.obs->aa_map, smooth_aa);
   views->aa_past = ToFloat(partner.obs->aa_map, smooth_aa);
@@ -248,7 +251,8 @@ std::vector<Match> MatchTemporalGroup(const PosedObservation& now, const PosedOb
     input.T_check_now = &T_check_now;
   }
   return MatchTemporal(input, group, stereo, config.temporal_stereo,
-                       config.static_stereo.zncc_threshold, config.inv_depth_range(), stats);
+                       config.static_stereo.zncc_threshold, config.inv_depth_range(), stats,
+                       prediction);
 }
 
 }  // namespace
@@ -281,8 +285,12 @@ Status Mapper::Update(const PosedObservation& now, const PosedObservation* partn
   auto t = Clock::now();
   const bool smooth = config_.static_stereo.smooth_time_surface;
   const cv::Mat left = ToFloat(obs.ts_left, smooth), right = ToFloat(obs.ts_right, smooth);
-  std::vector<Match> matches = MatchStatic({left, right, valid_mask_}, groups.static_group, stereo_,
-                                           config_.static_stereo, config_.inv_depth_range());
+  std::optional<DisparityPrediction> prediction;
+  if (config_.predicted_search && local_map_)
+    prediction.emplace(*local_map_, now.T_world_obs, stereo_);
+  std::vector<Match> matches =
+      MatchStatic({left, right, valid_mask_}, groups.static_group, stereo_, config_.static_stereo,
+                  config_.inv_depth_range(), prediction ? &*prediction : nullptr);
   MarkNearHorizontal(groups, &matches);
   if (config_.static_stereo.out_of_view_radius_px > 0 && local_map_) {
     DropOutOfViewMatches(*local_map_, now.T_world_obs, stereo_, kPatchWidth / 2,
@@ -291,8 +299,9 @@ Status Mapper::Update(const PosedObservation& now, const PosedObservation* partn
   report->static_matches = static_cast<int>(matches.size());
   TemporalViews views;
   if (!groups.temporal_group.empty()) {
-    const std::vector<Match> temporal_matches = MatchTemporalGroup(
-        now, *partner, check, groups.temporal_group, stereo_, config_, &views, &report->temporal);
+    const std::vector<Match> temporal_matches =
+        MatchTemporalGroup(now, *partner, check, groups.temporal_group, stereo_, config_,
+                           prediction ? &*prediction : nullptr, &views, &report->temporal);
     report->temporal_matches = static_cast<int>(temporal_matches.size());
     matches.insert(matches.end(), temporal_matches.begin(), temporal_matches.end());
   }

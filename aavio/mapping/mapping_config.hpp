@@ -235,6 +235,11 @@ struct MappingConfig {
   /// newest edge (the negative TS's valley) before matching (edge_snapping.hpp); 0 = off, as the
   /// paper and the reference codes. Removes a scale drift of 2–10 % on the DSEC twins.
   double snap_to_edge_px = 2.0;
+  /// aavio: static and temporal stereo search only the depths the previous map predicts near
+  /// each sample (its points' 3σ; disparity_prediction.hpp), the whole range where it predicts
+  /// nothing or the best lies at a cut end of the window; false = always the whole range, as the
+  /// paper and the reference codes.
+  bool predicted_search = true;
   StaticStereoConfig static_stereo;
   TemporalStereoConfig temporal_stereo;
   DepthRefinementConfig depth_refinement;
@@ -253,6 +258,8 @@ struct MappingConfig {
     v("eta", eta, "η: |g_u| / |g_v| below it sends a sample to temporal stereo");
     v("snap_to_edge_px", snap_to_edge_px,
       "move samples up to this far onto the newest edge; 0 off (aavio) [px]");
+    v("predicted_search", predicted_search,
+      "stereo searches only the depths the previous map predicts, where it has any (aavio)");
     v("static_stereo", static_stereo);
     v("temporal_stereo", temporal_stereo);
     v("depth_refinement", depth_refinement);

@@ -30,11 +30,16 @@ struct StaticStereoInput {
   const cv::Mat& valid_mask;  ///< CV_8UC1 rectified left valid mask
 };
 
+class DisparityPrediction;
+
 /// One match per point that passes (order kept); `points` are rectified left positions; matches
-/// outside `range` are dropped.
+/// outside `range` are dropped. With a `prediction` (disparity_prediction.hpp) each row search
+/// first tries the window the previous map predicts and falls back to the whole range where that
+/// window gives no match or its best lies at a cut end.
 std::vector<Match> MatchStatic(const StaticStereoInput& input,
                                std::span<const Eigen::Vector2f> points,
                                const RectifiedStereo& stereo, const StaticStereoConfig& config,
-                               InvDepthRange range);
+                               InvDepthRange range,
+                               const DisparityPrediction* prediction = nullptr);
 
 }  // namespace aavio::mapping

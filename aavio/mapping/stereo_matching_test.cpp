@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include "aavio/mapping/depth_refinement.hpp"
+#include "aavio/mapping/disparity_prediction.hpp"
 #include "aavio/mapping/mapping_test_utils.hpp"
 #include "aavio/mapping/static_stereo.hpp"
 #include "aavio/mapping/temporal_stereo.hpp"
@@ -65,16 +66,22 @@ TEST(Zncc, RowSearchEqualsOneCostPerPosition) {
   EXPECT_NEAR(costs[85], 0.0, 1e-6);
 }
 
+// Left pixels on a grid over the middle of the 160×120 test images.
+std::vector<Eigen::Vector2f> GridPoints() {
+  std::vector<Eigen::Vector2f> points;
+  for (int v = 20; v < 100; v += 9)
+    for (int u = 40; u < 140; u += 11)
+      points.emplace_back(u, v);
+  return points;
+}
+
 TEST(StaticStereo, FindsTheShiftOfATexture) {
   const RectifiedStereo stereo = testing::SmallStereo();
   const cv::Mat left = testing::Texture(160, 120, 2);
   const cv::Mat right = testing::Shifted(left, 12.0, 0.0);  // right(x) = left(x + 12): d = 12
   const cv::Mat valid(120, 160, CV_8UC1, cv::Scalar(255));
   MappingConfig config = Config();
-  std::vector<Eigen::Vector2f> points;
-  for (int v = 20; v < 100; v += 9)
-    for (int u = 40; u < 140; u += 11)
-      points.emplace_back(u, v);
+  const std::vector<Eigen::Vector2f> points = GridPoints();
   const std::vector<Match> matches = MatchStatic({left, right, valid}, points, stereo,
                                                  config.static_stereo, config.inv_depth_range());
   EXPECT_GT(matches.size(), points.size() * 9 / 10);
@@ -91,6 +98,50 @@ TEST(StaticStereo, FindsTheShiftOfATexture) {
 
 // The left-right check keeps consistent matches and drops a match whose right patch finds a
 // better partner elsewhere on the left row.
+// A previous map of the plane at disparity `disparity` over the whole view (identity pose).
+LocalMap PlaneMap(const RectifiedStereo& stereo, double disparity) {
+  LocalMap map;
+  for (int v = 4; v < stereo.height; v += 4) {
+    for (int u = 4; u < stereo.width; u += 4) {
+      DepthPoint p;
+      p.u = static_cast<float>(u), p.v = static_cast<float>(v);
+      p.rho = disparity / stereo.fb();
+      map.points.push_back(p);
+      map.points_world.push_back(p.Point(stereo));
+    }
+  }
+  return map;
+}
+
+TEST(StaticStereo, SearchesWhereThePreviousMapPredictsAndFallsBackWhereItIsWrong) {
+  const RectifiedStereo stereo = testing::SmallStereo();
+  // A texture so smooth that one pixel off the truth still passes the cost threshold.
+  cv::Mat left;
+  cv::GaussianBlur(testing::Texture(160, 120, 2), left, cv::Size(0, 0), 4.0);
+  const cv::Mat right = testing::Shifted(left, 12.0, 0.0);  // d = 12
+  const cv::Mat valid(120, 160, CV_8UC1, cv::Scalar(255));
+  const MappingConfig config = Config();
+  const std::vector<Eigen::Vector2f> points = GridPoints();
+  const std::vector<Match> full = MatchStatic({left, right, valid}, points, stereo,
+                                              config.static_stereo, config.inv_depth_range());
+  ASSERT_GT(full.size(), points.size() * 9 / 10);
+  // A right prediction (12.3 px: window 10–15) gives the same matches; so does one next to the
+  // truth (15.5 px: window 13–18), whose best then lies at the window's cut end, searched again
+  // over the whole range.
+  for (const double predicted : {12.3, 15.5}) {
+    SCOPED_TRACE(predicted);
+    const DisparityPrediction prediction(PlaneMap(stereo, predicted), {}, stereo);
+    const std::vector<Match> seeded =
+        MatchStatic({left, right, valid}, points, stereo, config.static_stereo,
+                    config.inv_depth_range(), &prediction);
+    ASSERT_EQ(seeded.size(), full.size());
+    for (std::size_t i = 0; i < full.size(); ++i) {
+      EXPECT_EQ(seeded[i].u, full[i].u);
+      EXPECT_DOUBLE_EQ(seeded[i].rho, full[i].rho);
+    }
+  }
+}
+
 TEST(StaticStereo, LeftRightCheckDropsInconsistentMatches) {
   const RectifiedStereo stereo = testing::SmallStereo();
   MappingConfig config = Config();
@@ -182,6 +233,31 @@ TEST(TemporalStereo, MatchesHorizontalEdgesAlongTheEpipolarSegment) {
   for (const Match& m : matches) {
     EXPECT_EQ(m.kind, StereoKind::kTemporal);
     EXPECT_NEAR(1.0 / m.rho, 10.0, 10.0 * 0.5 / scene.shift);  // within half a pixel of parallax
+  }
+}
+
+// With the previous map's plane as prediction, the search covers only the depths near it: a right
+// one (10.2 m) gives the full search's matches, and so does one beside the truth (11 m: depths
+// 10.3–11.8 m), whose best then lies at the window's near end, searched again over the whole
+// segment.
+TEST(TemporalStereo, SearchesTheDepthsThePreviousMapPredicts) {
+  const StripedPlane scene;
+  const MappingConfig config = Config();
+  const std::vector<Match> full = scene.Matches(config);
+  ASSERT_GT(full.size(), scene.points.size() / 2);
+  for (const double predicted_m : {10.2, 11.0}) {
+    SCOPED_TRACE(predicted_m);
+    const DisparityPrediction prediction(PlaneMap(scene.stereo, scene.stereo.fb() / predicted_m),
+                                         {}, scene.stereo);
+    const std::vector<Match> seeded =
+        MatchTemporal({scene.aa_now, scene.aa_past, scene.T_past_now}, scene.points, scene.stereo,
+                      config.temporal_stereo, config.static_stereo.zncc_threshold,
+                      config.inv_depth_range(), nullptr, &prediction);
+    ASSERT_EQ(seeded.size(), full.size());
+    for (std::size_t i = 0; i < full.size(); ++i) {
+      EXPECT_EQ(seeded[i].u, full[i].u);
+      EXPECT_NEAR(seeded[i].rho, full[i].rho, 1e-12);
+    }
   }
 }
 

@@ -10,6 +10,7 @@
 #include <limits>
 #include <vector>
 
+#include "aavio/mapping/disparity_prediction.hpp"
 #include "aavio/mapping/static_stereo.hpp"
 #include "aavio/mapping/zncc.hpp"
 
@@ -49,6 +50,7 @@ struct SegmentMatch {
   double cost = 1.0;
   double z = 0.0;
   double dz_per_px = 0.0;
+  bool at_far_end = false, at_near_end = false;  // the best is the segment's first or last step
 };
 
 // What became of a candidate; the order is TemporalMatchStats' (MatchTemporal counts by it).
@@ -69,24 +71,41 @@ enum class Outcome : std::uint8_t {
   kOutOfRange
 };
 
+// The epipolar segment of inverse depths [rho_lo, rho_hi]: the projections of its farthest and
+// nearest depth; false if either is behind the partner camera.
+bool Segment(const Eigen::Vector2f& x, double rho_lo, double rho_hi,
+             const geometry::RigidTransform& T_past_now, const RectifiedStereo& stereo,
+             double* u_far, double* v_far, double* u_near, double* v_near) {
+  return stereo.Project(T_past_now * stereo.Backproject(x.x(), x.y(), rho_lo), u_far, v_far) &&
+         stereo.Project(T_past_now * stereo.Backproject(x.x(), x.y(), rho_hi), u_near, v_near);
+}
+
+// `window`: the part of the searched inverse depths to look at (null: all of it); the parallax
+// test is the whole segment's either way.
 Outcome SearchSegment(const NormalizedPatch& patch, const cv::Mat& aa_past,
                       const geometry::RigidTransform& T_past_now, const Eigen::Vector2f& x,
-                      const RectifiedStereo& stereo, const Search& search, SegmentMatch* out) {
+                      const RectifiedStereo& stereo, const Search& search,
+                      const InvDepthRange* window, SegmentMatch* out) {
   const TemporalStereoConfig& t = search.config;
-  const double rho_lo = search.search.min, rho_hi = search.search.max;
   constexpr int hr = kTemporalPatchRows / 2, hc = kTemporalPatchCols / 2;
   const int w = aa_past.cols, h = aa_past.rows;
   const int stride = static_cast<int>(aa_past.step1());
   // The epipolar segment: projections of the farthest and the nearest allowed depth.
   double u_far, v_far, u_near, v_near;
-  if (!stereo.Project(T_past_now * stereo.Backproject(x.x(), x.y(), rho_lo), &u_far, &v_far) ||
-      !stereo.Project(T_past_now * stereo.Backproject(x.x(), x.y(), rho_hi), &u_near, &v_near)) {
+  if (!Segment(x, search.search.min, search.search.max, T_past_now, stereo, &u_far, &v_far, &u_near,
+               &v_near)) {
+    return Outcome::kNoSegment;
+  }
+  // Too little parallax over the whole depth range: depth would be mostly quantisation noise.
+  if (std::max(std::abs(u_near - u_far), std::abs(v_near - v_far)) < t.min_parallax_px)
+    return Outcome::kNoSegment;
+  if (window != nullptr &&
+      !Segment(x, window->min, window->max, T_past_now, stereo, &u_far, &v_far, &u_near, &v_near)) {
     return Outcome::kNoSegment;
   }
   const double du = u_near - u_far, dv = v_near - v_far;
   const double length = std::max(std::abs(du), std::abs(dv));
-  // Too little parallax over the whole depth range: depth would be mostly quantisation noise.
-  if (length < t.min_parallax_px) return Outcome::kNoSegment;
+  if (window != nullptr && !(length > 0.0)) return Outcome::kNoSegment;
   // One candidate per pixel along the segment's major axis, at whole pixels of it (so the steps
   // are uniform and the parabola below is unbiased); the other coordinate is rounded.
   const bool along_u = std::abs(du) >= std::abs(dv);
@@ -134,12 +153,42 @@ Outcome SearchSegment(const NormalizedPatch& patch, const cv::Mat& aa_past,
   // Rays that no longer meet one pixel away: unbounded sensitivity.
   const double dz_per_px = z_a <= 0.0 || z_b <= 0.0 ? std::numeric_limits<double>::infinity()
                                                     : 0.5 * std::abs(z_b - z_a);
-  *out = {best, z, dz_per_px};
+  *out = {best, z, dz_per_px, best_k == 0, best_k == steps};
   return Outcome::kMatched;
 }
 
+// The inverse depths the previous map predicts at x, inside the searched ones; false: none.
+bool PredictedWindow(const DisparityPrediction* prediction, const Eigen::Vector2f& x,
+                     const RectifiedStereo& stereo, const InvDepthRange& search,
+                     InvDepthRange* window) {
+  if (prediction == nullptr) return false;
+  DisparityRange d;
+  if (!prediction->Window(x.x(), x.y(), StaticDisparityRange(stereo, search), &d)) return false;
+  window->min = std::max(search.min, stereo.InvDepthOfDisparity(d.min));
+  window->max = std::min(search.max, stereo.InvDepthOfDisparity(d.max));
+  return window->min < window->max;
+}
+
+// A search in one past view: within the predicted window, then the whole segment where the
+// window leaves the image or its best is at a cut end of the window (the true one may lie
+// beyond).
+Outcome SearchPredicted(const NormalizedPatch& patch, const cv::Mat& aa_past,
+                        const geometry::RigidTransform& T_past_now, const Eigen::Vector2f& x,
+                        const RectifiedStereo& stereo, const Search& s, const InvDepthRange* window,
+                        SegmentMatch* out) {
+  if (window != nullptr) {
+    const Outcome found = SearchSegment(patch, aa_past, T_past_now, x, stereo, s, window, out);
+    const bool cut_far = out->at_far_end && window->min > s.search.min;
+    const bool cut_near = out->at_near_end && window->max < s.search.max;
+    if (found == Outcome::kMatched ? !cut_far && !cut_near : found != Outcome::kNoSegment)
+      return found;
+  }
+  return SearchSegment(patch, aa_past, T_past_now, x, stereo, s, nullptr, out);
+}
+
 Outcome MatchOne(const TemporalStereoInput& in, const Eigen::Vector2f& x,
-                 const RectifiedStereo& stereo, const Search& s, Match* out) {
+                 const RectifiedStereo& stereo, const Search& s,
+                 const DisparityPrediction* prediction, Match* out) {
   const TemporalStereoConfig& t = s.config;
   constexpr int hr = kTemporalPatchRows / 2, hc = kTemporalPatchCols / 2;
   const int w = in.aa_now.cols, h = in.aa_now.rows;
@@ -159,8 +208,12 @@ Outcome MatchOne(const TemporalStereoInput& in, const Eigen::Vector2f& x,
   if (!PreparePatch(source, stride, kTemporalPatchRows, kTemporalPatchCols, &patch))
     return Outcome::kNoSegment;
 
+  InvDepthRange window;
+  const InvDepthRange* predicted =
+      PredictedWindow(prediction, x, stereo, s.search, &window) ? &window : nullptr;
   SegmentMatch m;
-  const Outcome found = SearchSegment(patch, in.aa_past, in.T_past_now, x, stereo, s, &m);
+  const Outcome found =
+      SearchPredicted(patch, in.aa_past, in.T_past_now, x, stereo, s, predicted, &m);
   if (found != Outcome::kMatched) return found;
   // Conditioning: one pixel of matching error may not move the depth by more than
   // max_relative_depth_error (parallax too small for this depth otherwise).
@@ -172,7 +225,7 @@ Outcome MatchOne(const TemporalStereoInput& in, const Eigen::Vector2f& x,
     // depth within cross_check_px pixels of matching error (summed over both searches); then
     // the two are averaged in inverse depth, weighted by their per-pixel precision.
     SegmentMatch c;
-    if (SearchSegment(patch, *in.aa_check, *in.T_check_now, x, stereo, s, &c) !=
+    if (SearchPredicted(patch, *in.aa_check, *in.T_check_now, x, stereo, s, predicted, &c) !=
         Outcome::kMatched) {
       return Outcome::kCheckRejected;
     }
@@ -197,7 +250,7 @@ std::vector<Match> MatchTemporal(const TemporalStereoInput& input,
                                  std::span<const Eigen::Vector2f> points,
                                  const RectifiedStereo& stereo, const TemporalStereoConfig& config,
                                  double zncc_threshold, InvDepthRange range,
-                                 TemporalMatchStats* stats) {
+                                 TemporalMatchStats* stats, const DisparityPrediction* prediction) {
   // [ICRA code]: a wide patch on AA maps is accepted below 3θ.
   const Search search{config, 3.0 * zncc_threshold, range, TemporalInvDepthRange(config, range)};
   std::vector<Match> results(points.size());
@@ -205,7 +258,7 @@ std::vector<Match> MatchTemporal(const TemporalStereoInput& input,
   std::vector<Outcome> outcomes(points.size(), Outcome::kNoSegment);
   if (search.search.min < search.search.max) {
     tbb::parallel_for(std::size_t{0}, points.size(), [&](std::size_t i) {
-      outcomes[i] = MatchOne(input, points[i], stereo, search, &results[i]);
+      outcomes[i] = MatchOne(input, points[i], stereo, search, prediction, &results[i]);
     });
   }
   // Counted by outcome, in the order of both Outcome and TemporalMatchStats.

@@ -56,13 +56,18 @@ InvDepthRange TemporalInvDepthRange(const TemporalStereoConfig& config, InvDepth
 double TriangulateDepth(const RectifiedStereo& stereo, const Eigen::Vector2d& x_now,
                         const Eigen::Vector2d& x_past, const geometry::RigidTransform& T_past_now);
 
+class DisparityPrediction;
+
 /// Matches for the `points` that pass every test, in their order; `stats` (optional) counts
 /// what became of each point. A match is accepted below 3 × static stereo's `zncc_threshold`
-/// ([ICRA code]) and kept inside `range`.
+/// ([ICRA code]) and kept inside `range`. With a `prediction` (disparity_prediction.hpp) each
+/// search first covers the depths the previous map predicts, the whole segment where that finds
+/// no match or its best lies at a cut end.
 std::vector<Match> MatchTemporal(const TemporalStereoInput& input,
                                  std::span<const Eigen::Vector2f> points,
                                  const RectifiedStereo& stereo, const TemporalStereoConfig& config,
                                  double zncc_threshold, InvDepthRange range,
-                                 TemporalMatchStats* stats = nullptr);
+                                 TemporalMatchStats* stats = nullptr,
+                                 const DisparityPrediction* prediction = nullptr);
 
 }  // namespace aavio::mapping
