@@ -34,8 +34,8 @@ class DisparityPrediction;
 
 /// One match per point that passes (order kept); `points` are rectified left positions; matches
 /// outside `range` are dropped. With a `prediction` (disparity_prediction.hpp) each row search
-/// first tries the window the previous map predicts and falls back to the whole range where that
-/// window gives no match or its best lies at a cut end.
+/// covers the window the previous map predicts, the whole range where the map predicts nothing
+/// there, the window leaves the image, or the window's best lies at a cut end.
 std::vector<Match> MatchStatic(const StaticStereoInput& input,
                                std::span<const Eigen::Vector2f> points,
                                const RectifiedStereo& stereo, const StaticStereoConfig& config,

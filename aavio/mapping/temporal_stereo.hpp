@@ -61,8 +61,8 @@ class DisparityPrediction;
 /// Matches for the `points` that pass every test, in their order; `stats` (optional) counts
 /// what became of each point. A match is accepted below 3 × static stereo's `zncc_threshold`
 /// ([ICRA code]) and kept inside `range`. With a `prediction` (disparity_prediction.hpp) each
-/// search first covers the depths the previous map predicts, the whole segment where that finds
-/// no match or its best lies at a cut end.
+/// search covers the depths the previous map predicts, the whole segment where the map predicts
+/// nothing there, that part of the segment leaves the image, or its best lies at a cut end.
 std::vector<Match> MatchTemporal(const TemporalStereoInput& input,
                                  std::span<const Eigen::Vector2f> points,
                                  const RectifiedStereo& stereo, const TemporalStereoConfig& config,
