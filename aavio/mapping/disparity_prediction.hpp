@@ -1,10 +1,11 @@
 #pragma once
-/// Where the previous map says static stereo's match lies (aavio). The published map, moved into
-/// the current left view, predicts each edge pixel's disparity; the row search then only needs a
-/// window around the prediction instead of the whole disparity range of the depth range (on the
-/// DSEC rig 80+ disparities per pixel). The window is as wide as the map points' own uncertainty
-/// (3σ of their inverse depth, at least kMinMarginPx) and spans every point near the pixel, so a
-/// depth edge keeps both of its sides. Pixels the map knows nothing about are searched in full.
+/// Where the previous map says a stereo match lies (aavio). The published map, moved into the
+/// current left view, predicts each edge pixel's disparity; static stereo's row search and
+/// temporal stereo's epipolar search then only need a window around the prediction instead of the
+/// whole depth range (on the DSEC rig 80+ disparities per pixel). The window is as wide as the map
+/// points' own uncertainty (3σ of their inverse depth, at least kMinMarginPx) and spans every
+/// point near the pixel, so a depth edge keeps both of its sides. Pixels the map knows nothing
+/// about are searched in full.
 
 #include <vector>
 
@@ -20,8 +21,8 @@ class DisparityPrediction {
   /// Cells of this many pixels collect the projected points; a pixel's window spans the points of
   /// its cell and the 8 around it (so points 8–16 px away count).
   static constexpr int kCellPx = 8;
-  /// The narrowest half window [px]: the map's pose and the tracked pose differ by a few tenths
-  /// of a pixel, and matching is to the pixel.
+  /// The narrowest half window [px]: matching is to the whole pixel, and the map's pose and the
+  /// current one are estimates too.
   static constexpr double kMinMarginPx = 2.0;
 
   /// The map `previous` in the view at T_world_now.
@@ -32,7 +33,7 @@ class DisparityPrediction {
   /// where no map point is near.
   bool Window(float u, float v, const DisparityRange& full, DisparityRange* window) const;
 
-  /// Cells with a prediction (for tests and reports).
+  /// Cells with a prediction (for tests).
   int covered_cells() const;
 
  private:

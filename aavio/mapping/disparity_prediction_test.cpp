@@ -80,7 +80,7 @@ TEST(DisparityPrediction, TheMapIsMovedIntoTheCurrentView) {
   ASSERT_TRUE(prediction.Window(80.0f, 60.0f, {0, 80}, &w));
   EXPECT_EQ(w.min, 23);  // 20.5 / 0.8 = 25.625, ± 2
   EXPECT_EQ(w.max, 28);
-  // Behind the camera or outside the view: ignored.
+  // Points behind the camera: ignored.
   T_world_now.t = {0.0, 0.0, 2.0 * z};
   EXPECT_EQ(DisparityPrediction(PatchMap(stereo, 20.5, 1e-6), T_world_now, stereo).covered_cells(),
             0);
