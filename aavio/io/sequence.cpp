@@ -150,7 +150,8 @@ Expected<SequenceDescription> ReadSequenceYaml(const std::string& path) {
     d.imu = spec;
   }
   if (YAML::Node gt = (*root)["ground_truth"]) {
-    AAVIO_RETURN_IF_ERROR(CheckKeys(gt, {"trajectory", "topic", "depth"}, path, "ground_truth."));
+    AAVIO_RETURN_IF_ERROR(
+        CheckKeys(gt, {"trajectory", "topic", "depth", "calibration"}, path, "ground_truth."));
     if (!Scalar(gt, "trajectory").empty()) {
       SourceSpec spec;
       spec.path = Resolve(base, Scalar(gt, "trajectory"));
@@ -170,6 +171,7 @@ Expected<SequenceDescription> ReadSequenceYaml(const std::string& path) {
       d.gt_trajectory = spec;
     }
     d.gt_depth = Resolve(base, Scalar(gt, "depth"));
+    d.gt_calibration = Resolve(base, Scalar(gt, "calibration"));
   }
   return d;
 }
@@ -206,6 +208,7 @@ Status WriteSequenceYaml(const std::string& path, const SequenceDescription& d) 
       add("ground_truth.topic", d.gt_trajectory->topic);
   }
   add("ground_truth.depth", rel(d.gt_depth));
+  add("ground_truth.calibration", rel(d.gt_calibration));
   return WriteTextFile(path,
                        FormatConfigYaml(entries, "aavio sequence description (keys: docs/io.md)"));
 }

@@ -17,6 +17,7 @@
 ///     trajectory: groundtruth.txt       # TUM or EuRoC text, or a bag with a PoseStamped topic
 ///     topic: /gt/pose
 ///     depth: depth                      # folder of 16-bit disparity PNGs
+///     calibration: calibration_true     # the true calibration (a simulated twin's)
 ///
 /// Relative paths resolve against the folder of the sequence.yaml. Besides sequence.yaml,
 /// DescribeSequence accepts a DSEC sequence folder (events/{left,right}/events.h5 +
@@ -56,6 +57,7 @@ struct SequenceDescription {
   std::optional<SourceSpec> imu;
   std::optional<SourceSpec> gt_trajectory;  ///< text (TUM, EuRoC) or bag (PoseStamped topic)
   std::string gt_depth;
+  std::string gt_calibration;  ///< the rig's true calibration, for LoadCalibration; may be empty
 };
 
 Expected<SequenceDescription> ReadSequenceYaml(const std::string& path);

@@ -199,6 +199,7 @@ TEST(Sequence, WrittenDescriptionReadsBack) {
   d.imu = SourceSpec{SourceFormat::kText, (dir / "imu.txt").string(), "", ImuTextLayout::kEcd};
   d.gt_trajectory = SourceSpec{SourceFormat::kText, (dir / "groundtruth.txt").string(), "", {}};
   d.gt_depth = (dir / "depth").string();
+  d.gt_calibration = (dir / "calibration_true").string();
   ASSERT_TRUE(WriteSequenceYaml((dir / "sequence.yaml").string(), d).ok());
   const std::vector<char> bytes = testing::ReadBytes((dir / "sequence.yaml").string());
   const std::string text(bytes.begin(), bytes.end());
@@ -210,6 +211,7 @@ TEST(Sequence, WrittenDescriptionReadsBack) {
   EXPECT_EQ(back->imu->path, d.imu->path);
   EXPECT_EQ(back->gt_trajectory->path, d.gt_trajectory->path);
   EXPECT_EQ(back->gt_depth, d.gt_depth);
+  EXPECT_EQ(back->gt_calibration, d.gt_calibration);
 }
 
 TEST(Sequence, DsecFolderAndBagAreRecognised) {

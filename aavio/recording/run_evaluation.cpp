@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "aavio/common/format.hpp"
+#include "aavio/io/calibration.hpp"
 #include "aavio/io/ground_truth_depth.hpp"
 #include "aavio/mapping/rectified_stereo.hpp"
 #include "aavio/recording/depth_scorer.hpp"
@@ -142,7 +143,40 @@ Expected<RunGroundTruth> RunGroundTruth::Of(const io::SequenceDescription& d,
   truth.camera = {stereo.width, stereo.height, stereo.f, stereo.cx_left, stereo.cy, stereo.fb()};
   truth.fb = stereo.fb();
   truth.disparity_offset = stereo.cx_left - stereo.cx_right;
+  if (!d.gt_calibration.empty()) {
+    const std::string context = d.origin + ": ground_truth.calibration " + d.gt_calibration;
+    Expected<io::LoadedCalibration> true_calibration = io::LoadCalibration(d.gt_calibration);
+    if (!true_calibration) return true_calibration.status().WithContext(context);
+    Expected<geometry::CalibrationDifference> error =
+        geometry::CompareCalibrations(rig, true_calibration->rig);
+    if (!error) return error.status().WithContext(context);
+    truth.calibration_error = *error;
+  }
   return truth;
+}
+
+nlohmann::json CalibrationDifferenceJson(const geometry::CalibrationDifference& d) {
+  return {{"disparity_offset_px", d.disparity_offset_px},
+          {"disparity_offset_min_px", d.disparity_offset_min_px},
+          {"disparity_offset_max_px", d.disparity_offset_max_px},
+          {"row_offset_px", d.row_offset_px},
+          {"max_row_offset_px", d.max_row_offset_px},
+          {"fb_ratio", d.fb_ratio},
+          {"directions", d.directions}};
+}
+
+std::string CalibrationDifferenceLine(const geometry::CalibrationDifference& d, double fb) {
+  // A point of true disparity 10 px is put at fb·r / (10 + ε) instead of fb / 10 (r: fb_ratio).
+  constexpr double kDisparityPx = 10.0;
+  const double short_percent =
+      100.0 * (1.0 - d.fb_ratio * kDisparityPx / (kDisparityPx + d.disparity_offset_px));
+  return StrFormat(
+      "calibration against the true one (ground_truth.calibration): disparity at infinity "
+      "%+.2f px (%+.2f to %+.2f over the view), rows %+.2f px (at most %.2f), f·b %+.2f %%; at "
+      "%.0f px of disparity (%.1f m) depths %.1f %% %s\n",
+      d.disparity_offset_px, d.disparity_offset_min_px, d.disparity_offset_max_px, d.row_offset_px,
+      d.max_row_offset_px, 100.0 * (d.fb_ratio - 1.0), kDisparityPx, fb / kDisparityPx,
+      std::abs(short_percent), short_percent >= 0.0 ? "short" : "long");
 }
 
 Expected<eval::DepthErrorAccumulator> EvaluateRunDepth(

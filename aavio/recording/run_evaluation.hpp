@@ -15,6 +15,7 @@
 #include "aavio/eval/relative_error.hpp"
 #include "aavio/eval/trajectory_error.hpp"
 #include "aavio/eval/velocity_error.hpp"
+#include "aavio/geometry/calibration_difference.hpp"
 #include "aavio/geometry/pose_buffer.hpp"
 #include "aavio/geometry/stereo_rig.hpp"
 #include "aavio/io/ground_truth_depth.hpp"
@@ -66,9 +67,12 @@ struct RunGroundTruth {
   std::string depth_dir;                    ///< empty when the sequence has no ground-truth depth
   eval::PinholeCamera camera;               ///< the rectified left camera
   double fb = 0.0, disparity_offset = 0.0;  ///< for disparity-PNG ground truth (DSEC)
+  /// The calibration's error against the true one, when the sequence names it
+  /// (ground_truth.calibration: a simulated twin's).
+  std::optional<geometry::CalibrationDifference> calibration_error;
 
   /// From a sequence's description and its calibration; an error says why there is nothing to
-  /// evaluate against (no ground-truth trajectory).
+  /// evaluate against (no ground-truth trajectory), or that the true calibration is unreadable.
   static Expected<RunGroundTruth> Of(const io::SequenceDescription& sequence,
                                      const geometry::StereoRig& rig);
   /// The ground-truth poses (io::ReadGroundTruthPoses).
@@ -96,6 +100,10 @@ bool RotationErrorIsTheAlignments(const eval::TrajectoryError& a);
 /// The `aavio eval --json` keys of docs/cli.md.
 nlohmann::json TrajectoryEvaluationJson(const TrajectoryEvaluation& e);
 nlohmann::json DepthJson(const eval::DepthErrorSummary& s);
+
+/// summary.json "calibration_error", and the line `aavio run` ends with.
+nlohmann::json CalibrationDifferenceJson(const geometry::CalibrationDifference& d);
+std::string CalibrationDifferenceLine(const geometry::CalibrationDifference& d, double fb);
 
 /// A readable table of the same.
 std::string TrajectoryEvaluationTable(const TrajectoryEvaluation& e);

@@ -334,6 +334,10 @@ void RunRecorder::Score(RunRecord* record) const {
       record->accuracy_error = e.status().WithContext(truth_->trajectory_name());
     }
   }
+  if (truth_) {
+    record->calibration_error = truth_->calibration_error;
+    record->fb = truth_->fb;
+  }
   if (scorer_) {
     eval::DepthErrorSummary depth = scorer_->accumulator().Summary();
     if (depth.frames > 0) record->depth = std::move(depth);
@@ -386,6 +390,8 @@ void RunRecorder::Summarize(bool interrupted, TimeNs end_ns, nlohmann::json moti
   if (record->accuracy) s["accuracy"] = TrajectoryEvaluationJson(*record->accuracy);
   if (!record->accuracy_error.ok()) s["accuracy_error"] = record->accuracy_error.message();
   if (record->depth) s["depth"] = DepthJson(*record->depth);
+  if (record->calibration_error)
+    s["calibration_error"] = CalibrationDifferenceJson(*record->calibration_error);
   if (record->depth && record->sample_ceiling)
     s["depth"]["sample_ceiling"] = CoverageJson(*record->sample_ceiling);
 }

@@ -79,6 +79,9 @@ struct RunRecord {
   Status accuracy_error = Status::Ok();
   std::optional<eval::DepthErrorSummary> depth;
   std::optional<eval::DepthErrorSummary> sample_ceiling;  ///< runs on ground-truth poses
+  /// The calibration's error against the sequence's true one (RunGroundTruth).
+  std::optional<geometry::CalibrationDifference> calibration_error;
+  double fb = 0.0;  ///< the calibration's focal length × baseline [px·m]
 };
 
 class RunRecorder {

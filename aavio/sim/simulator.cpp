@@ -375,6 +375,8 @@ Expected<SimulationReport> Simulate(const SimulationRequest& request,
   d.calibration = (out / "calibration").string();
   AAVIO_RETURN_IF_ERROR(sink.Close(&d));
   d.gt_depth = (out / "depth").string();
+  if (world.sensor.rig.PerturbsCalibration())
+    d.gt_calibration = (out / "calibration_true").string();
   report.sequence_yaml = (out / "sequence.yaml").string();
   AAVIO_RETURN_IF_ERROR(io::WriteSequenceYaml(report.sequence_yaml, d));
   if (request.preview) WritePreviews(out, world, tally, *gt);

@@ -384,6 +384,39 @@ TEST(Cli, SimulateTakesASensorLevelOrFileAndSaysWhatItIs) {
   r = RunAavio({"info", (std::filesystem::path(seq) / "calibration_true").string(), "--json"});
   const nlohmann::json truth = nlohmann::json::parse(r.out);
   EXPECT_NE(told["left"]["cx"].get<double>(), truth["left"]["cx"].get<double>());
+  // The sequence names the truth, and a run says how far its calibration is from it.
+  const std::string run = (dir / "run").string();
+  r = RunAavio({"run", seq, "--out", run, "--quiet"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  EXPECT_NE(r.out.find("calibration against the true one (ground_truth.calibration): disparity at "
+                       "infinity "),
+            std::string::npos)
+      << r.out;
+  std::ifstream summary(std::filesystem::path(run) / "summary.json");
+  const nlohmann::json error = nlohmann::json::parse(summary)["calibration_error"];
+  // The typical sensor's errors: 0.3 px of principal point per camera, 0.03° of rotation, 0.3 %
+  // of baseline, 0.2 % of focal length.
+  EXPECT_GT(std::abs(error["disparity_offset_px"].get<double>()), 0.0);
+  EXPECT_LT(std::abs(error["disparity_offset_px"].get<double>()), 2.0);
+  EXPECT_LE(error["disparity_offset_min_px"].get<double>(),
+            error["disparity_offset_max_px"].get<double>());
+  EXPECT_NEAR(error["fb_ratio"].get<double>(), 1.0, 0.0031);
+  EXPECT_NE(error["fb_ratio"].get<double>(), 1.0);
+  // A true calibration that is not there is an error naming the key and the file.
+  {
+    std::ifstream in(std::filesystem::path(seq) / "sequence.yaml");
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::size_t at = text.find("calibration: calibration_true");
+    ASSERT_NE(at, std::string::npos) << text;
+    text.replace(at, std::string("calibration: calibration_true").size(),
+                 "calibration: no_such_calibration");
+    std::ofstream(std::filesystem::path(seq) / "broken.yaml") << text;
+  }
+  r = RunAavio({"run", (std::filesystem::path(seq) / "broken.yaml").string(), "--out",
+                (dir / "broken_run").string(), "--quiet"});
+  EXPECT_EQ(r.code, kExitError);
+  EXPECT_NE(r.err.find("ground_truth.calibration"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("no_such_calibration"), std::string::npos) << r.err;
   // --stats on the simulated events.
   r = RunAavio({"info", "--stats",
                 (std::filesystem::path(seq) / "events" / "left" / "events.h5").string(), "--json"});

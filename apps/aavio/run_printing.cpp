@@ -110,6 +110,8 @@ void PrintRun(const recording::RunRecord& record, const RunPrintout& run, Contex
         run.tracking_error->translation_m_rmse);
   }
   if (record.depth) ctx.out << recording::DepthTable(*record.depth);
+  if (record.calibration_error)
+    ctx.out << recording::CalibrationDifferenceLine(*record.calibration_error, record.fb);
   if (record.sample_ceiling) ctx.out << recording::SampleCeilingLine(*record.sample_ceiling);
   std::string trajectories;
   if (s["poses"].get<std::size_t>() > 0) {
