@@ -402,10 +402,20 @@ TEST(Cli, SimulateTakesASensorLevelOrFileAndSaysWhatItIs) {
             error["disparity_offset_max_px"].get<double>());
   EXPECT_NEAR(error["fb_ratio"].get<double>(), 1.0, 0.0031);
   EXPECT_NE(error["fb_ratio"].get<double>(), 1.0);
+  // A converted copy still names the truth.
+  r = RunAavio({"convert", seq, "--to", "txt", "--out", (dir / "converted").string()});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  {
+    const std::vector<char> bytes =
+        testing::ReadBytes((dir / "converted" / "sequence.yaml").string());
+    const std::string text(bytes.begin(), bytes.end());
+    EXPECT_NE(text.find("calibration_true"), std::string::npos) << text;
+  }
   // A true calibration that is not there is an error naming the key and the file.
   {
-    std::ifstream in(std::filesystem::path(seq) / "sequence.yaml");
-    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::vector<char> bytes =
+        testing::ReadBytes((std::filesystem::path(seq) / "sequence.yaml").string());
+    std::string text(bytes.begin(), bytes.end());
     const std::size_t at = text.find("calibration: calibration_true");
     ASSERT_NE(at, std::string::npos) << text;
     text.replace(at, std::string("calibration: calibration_true").size(),

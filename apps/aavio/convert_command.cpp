@@ -98,6 +98,7 @@ Status Convert(const ConvertOptions& options, Context& ctx) {
   out.name = in->name;
   out.calibration = in->calibration.empty() ? "" : fs::absolute(in->calibration).string();
   out.gt_depth = in->gt_depth.empty() ? "" : fs::absolute(in->gt_depth).string();
+  out.gt_calibration = in->gt_calibration.empty() ? "" : fs::absolute(in->gt_calibration).string();
   AAVIO_RETURN_IF_ERROR(sink.Close(&out));
   const std::string yaml = (fs::path(options.out) / "sequence.yaml").string();
   AAVIO_RETURN_IF_ERROR(io::WriteSequenceYaml(yaml, out));
