@@ -165,14 +165,17 @@ nlohmann::json CalibrationDifferenceJson(const geometry::CalibrationDifference& 
           {"directions", d.directions}};
 }
 
-std::string CalibrationDifferenceLine(const geometry::CalibrationDifference& d, double fb) {
+std::string CalibrationDifferenceLine(const geometry::CalibrationDifference& d, double fb,
+                                      const std::string& what) {
   // A point of true disparity 10 px is put at fb·r / (10 + ε) instead of fb / 10 (r: fb_ratio).
   constexpr double kDisparityPx = 10.0;
-  std::string line = StrFormat(
-      "calibration against the true one (ground_truth.calibration): disparity at infinity "
-      "%+.2f px (%+.2f to %+.2f over the view), rows %+.2f px (at most %.2f), f·b %+.2f %%",
-      d.disparity_offset_px, d.disparity_offset_min_px, d.disparity_offset_max_px, d.row_offset_px,
-      d.max_row_offset_px, 100.0 * (d.fb_ratio - 1.0));
+  std::string line =
+      what +
+      StrFormat(
+          ": disparity at infinity "
+          "%+.2f px (%+.2f to %+.2f over the view), rows %+.2f px (at most %.2f), f·b %+.2f %%",
+          d.disparity_offset_px, d.disparity_offset_min_px, d.disparity_offset_max_px,
+          d.row_offset_px, d.max_row_offset_px, 100.0 * (d.fb_ratio - 1.0));
   if (kDisparityPx + d.disparity_offset_px > 0.0) {  // else such a point gets no depth
     const double short_percent =
         100.0 * (1.0 - d.fb_ratio * kDisparityPx / (kDisparityPx + d.disparity_offset_px));

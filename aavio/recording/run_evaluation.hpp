@@ -101,9 +101,12 @@ bool RotationErrorIsTheAlignments(const eval::TrajectoryError& a);
 nlohmann::json TrajectoryEvaluationJson(const TrajectoryEvaluation& e);
 nlohmann::json DepthJson(const eval::DepthErrorSummary& s);
 
-/// summary.json "calibration_error", and the line `aavio run` ends with.
+/// summary.json "calibration_error", and the line `aavio run` ends with (`what`: what was
+/// compared with what, "calibration against the true one (ground_truth.calibration)"; `fb`: the
+/// compared calibration's f·b [px·m]).
 nlohmann::json CalibrationDifferenceJson(const geometry::CalibrationDifference& d);
-std::string CalibrationDifferenceLine(const geometry::CalibrationDifference& d, double fb);
+std::string CalibrationDifferenceLine(const geometry::CalibrationDifference& d, double fb,
+                                      const std::string& what);
 
 /// A readable table of the same.
 std::string TrajectoryEvaluationTable(const TrajectoryEvaluation& e);

@@ -402,6 +402,27 @@ TEST(Cli, SimulateTakesASensorLevelOrFileAndSaysWhatItIs) {
             error["disparity_offset_max_px"].get<double>());
   EXPECT_NEAR(error["fb_ratio"].get<double>(), 1.0, 0.0031);
   EXPECT_NE(error["fb_ratio"].get<double>(), 1.0);
+  // info --against: the same comparison of two calibrations, told and in JSON.
+  r = RunAavio({"info", (std::filesystem::path(seq) / "calibration").string(), "--against",
+                (std::filesystem::path(seq) / "calibration_true").string()});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  EXPECT_NE(r.out.find("calibration_true: disparity at infinity " +
+                       StrFormat("%+.2f px", error["disparity_offset_px"].get<double>())),
+            std::string::npos)
+      << r.out;
+  r = RunAavio({"info", (std::filesystem::path(seq) / "calibration").string(), "--against",
+                (std::filesystem::path(seq) / "calibration_true").string(), "--json"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  EXPECT_DOUBLE_EQ(
+      nlohmann::json::parse(r.out)["against"]["difference"]["disparity_offset_px"].get<double>(),
+      error["disparity_offset_px"].get<double>());
+  r = RunAavio({"info", (std::filesystem::path(seq) / "calibration").string(), "--against",
+                (dir / "nowhere").string()});
+  EXPECT_EQ(r.code, kExitError);
+  EXPECT_NE(r.err.find("--against"), std::string::npos) << r.err;
+  r = RunAavio({"info", (std::filesystem::path(seq) / "events" / "left" / "events.h5").string(),
+                "--against", (std::filesystem::path(seq) / "calibration_true").string()});
+  EXPECT_EQ(r.code, kExitUsage);
   // A converted copy still names the truth.
   r = RunAavio({"convert", seq, "--to", "txt", "--out", (dir / "converted").string()});
   ASSERT_EQ(r.code, kExitOk) << r.err;

@@ -4,11 +4,14 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
+#include <optional>
 #include <ostream>
 
 #include "aavio/common/format.hpp"
+#include "aavio/geometry/calibration_difference.hpp"
 #include "aavio/geometry/rectification.hpp"
 #include "aavio/io/calibration.hpp"
+#include "aavio/recording/run_evaluation.hpp"
 #include "cli.hpp"
 #include "info.hpp"
 
@@ -20,6 +23,7 @@ struct InfoOptions {
   std::string path;
   bool json = false;
   bool stats = false;
+  std::string against;  ///< another calibration of the rig, to compare with
 };
 
 double Degrees(const Eigen::Matrix3d& R) {
@@ -69,7 +73,14 @@ int RunInfoOnData(const InfoOptions& options, Context& ctx) {
 }
 
 int RunInfo(const InfoOptions& options, Context& ctx) {
-  if (LooksLikeData(options.path)) return RunInfoOnData(options, ctx);
+  if (LooksLikeData(options.path)) {
+    if (!options.against.empty()) {
+      ctx.err << "aavio info: error: --against compares two calibrations; " << options.path
+              << " is data, not a calibration\n";
+      return kExitUsage;
+    }
+    return RunInfoOnData(options, ctx);
+  }
   if (options.stats) {
     ctx.err << "aavio info: error: --stats describes event data (.h5, .bag, .txt, .raw or a "
                "sequence); "
@@ -82,6 +93,20 @@ int RunInfo(const InfoOptions& options, Context& ctx) {
     return kExitError;
   }
   const geometry::StereoRig& rig = loaded->rig;
+  // --against: how far this calibration is from the other, in what stereo sees.
+  std::optional<geometry::CalibrationDifference> difference;
+  if (!options.against.empty()) {
+    Expected<io::LoadedCalibration> other = io::LoadCalibration(options.against);
+    Expected<geometry::CalibrationDifference> d =
+        other ? geometry::CompareCalibrations(rig, other->rig)
+              : Expected<geometry::CalibrationDifference>(other.status());
+    if (!d) {
+      ctx.err << "aavio info: error: --against " << options.against << ": " << d.status().message()
+              << "\n";
+      return kExitError;
+    }
+    difference = *d;
+  }
   const geometry::StereoRectification rect = geometry::BuildStereoRectification(rig);
   const double valid_left = ValidShare(rect.left.valid_mask);
   const double valid_right = ValidShare(rect.right.valid_mask);
@@ -109,6 +134,10 @@ int RunInfo(const InfoOptions& options, Context& ctx) {
       j["T_imu_left"] = nullptr;
     }
     j["warnings"] = loaded->warnings;
+    if (difference) {
+      j["against"] = {{"path", options.against},
+                      {"difference", recording::CalibrationDifferenceJson(*difference)}};
+    }
     ctx.out << j.dump(2) << "\n";
     return kExitOk;
   }
@@ -150,6 +179,10 @@ int RunInfo(const InfoOptions& options, Context& ctx) {
       << StrFormat("%.1f %% of the left image, %.1f %% of the right", 100.0 * valid_left,
                    100.0 * valid_right)
       << "\n";
+  if (difference) {
+    out << recording::CalibrationDifferenceLine(*difference, rig.focal_px() * rig.baseline_m(),
+                                                "  against " + options.against);
+  }
   for (const std::string& warning : loaded->warnings)
     out << "warning: " << warning << "\n";
   return kExitOk;
@@ -166,6 +199,9 @@ void RegisterInfo(CLI::App& app, Context& ctx) {
       "ROS 2 bag (.bag, .db3, .mcap) or a sequence");
   sub->add_option("path", options->path, "File or folder to describe")->required();
   sub->add_flag("--json", options->json, "Print JSON for scripts");
+  sub->add_option("--against", options->against,
+                  "Another calibration of the same rig: how far PATH is from it in what stereo "
+                  "sees (disparity at infinity, rows, f*b)");
   sub->add_flag("--stats", options->stats,
                 "Sensor statistics of the events: rate, ON/OFF ratio, isolated (noise-like) "
                 "events, same-pixel intervals, hot pixels, events per edge passage");

@@ -111,7 +111,9 @@ void PrintRun(const recording::RunRecord& record, const RunPrintout& run, Contex
   }
   if (record.depth) ctx.out << recording::DepthTable(*record.depth);
   if (record.calibration_error)
-    ctx.out << recording::CalibrationDifferenceLine(*record.calibration_error, record.fb);
+    ctx.out << recording::CalibrationDifferenceLine(
+        *record.calibration_error, record.fb,
+        "calibration against the true one (ground_truth.calibration)");
   if (record.sample_ceiling) ctx.out << recording::SampleCeilingLine(*record.sample_ceiling);
   std::string trajectories;
   if (s["poses"].get<std::size_t>() > 0) {
